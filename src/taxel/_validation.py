@@ -1,0 +1,97 @@
+"""Checks made once at the public boundary, with messages that name the parameter.
+
+Every public function of `taxel` validates its inputs with these helpers, so that bad
+input raises a `ValueError` or `TypeError` of the form "`name` must be ..., got value".
+The command line turns these into one-line messages and exit code 2.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "as_finite_array",
+    "check_choice",
+    "check_finite",
+    "check_positive",
+    "check_range",
+    "check_shape",
+]
+
+
+def _short(value: Any) -> str:
+    """Render a value for an error message, keeping arrays short."""
+    if isinstance(value, np.ndarray):
+        return f"array of shape {value.shape}"
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def check_finite(name: str, value: Any) -> float:
+    """Return `value` as a float, or raise naming `name` when it is not a finite number."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise TypeError(f"`{name}` must be a real number, got {_short(value)}") from None
+    if not math.isfinite(number):
+        raise ValueError(f"`{name}` must be finite, got {number}")
+    return number
+
+
+def check_positive(name: str, value: Any, *, allow_zero: bool = False) -> float:
+    """Return `value` as a float, or raise when it is not finite and > 0 (>= 0)."""
+    number = check_finite(name, value)
+    if number < 0 or (number == 0 and not allow_zero):
+        bound = ">= 0" if allow_zero else "> 0"
+        raise ValueError(f"`{name}` must be {bound}, got {number:g}")
+    return number
+
+
+def check_range(
+    name: str,
+    value: Any,
+    low: float,
+    high: float,
+    *,
+    low_inclusive: bool = True,
+    high_inclusive: bool = True,
+) -> float:
+    """Return `value` as a float, or raise when it lies outside the given interval."""
+    number = check_finite(name, value)
+    above = number >= low if low_inclusive else number > low
+    below = number <= high if high_inclusive else number < high
+    if not (above and below):
+        left = "[" if low_inclusive else "("
+        right = "]" if high_inclusive else ")"
+        raise ValueError(f"`{name}` must lie in {left}{low:g}, {high:g}{right}, got {number:g}")
+    return number
+
+
+def check_choice(name: str, value: Any, choices: tuple[str, ...]) -> str:
+    """Return `value` when it is one of `choices`, else raise naming the valid ones."""
+    if value not in choices:
+        raise ValueError(f"`{name}` must be one of {', '.join(choices)}; got {value!r}")
+    return str(value)
+
+
+def as_finite_array(name: str, value: Any, *, ndim: int | None = None) -> np.ndarray:
+    """Return `value` as a float64 array, or raise when it has NaN/inf or the wrong ndim."""
+    try:
+        array = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TypeError(f"`{name}` must be numeric, got {_short(value)}") from None
+    if ndim is not None and array.ndim != ndim:
+        raise ValueError(f"`{name}` must be {ndim}-D, got shape {array.shape}")
+    if not np.all(np.isfinite(array)):
+        bad = int(np.size(array) - np.count_nonzero(np.isfinite(array)))
+        raise ValueError(f"`{name}` must be finite everywhere, got {bad} NaN or inf value(s)")
+    return array
+
+
+def check_shape(name: str, array: np.ndarray, shape: tuple[int, ...]) -> None:
+    """Raise when `array` does not have exactly `shape`."""
+    if tuple(array.shape) != tuple(shape):
+        raise ValueError(f"`{name}` must have shape {tuple(shape)}, got {tuple(array.shape)}")

@@ -1,0 +1,67 @@
+"""Argument parsing, subcommand dispatch and the one-line error policy."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Callable, Sequence
+
+import taxel
+
+__all__ = ["CommandLineError", "main"]
+
+EXIT_USAGE = 2
+
+
+class CommandLineError(Exception):
+    """A problem with what the user asked for; printed as one line, exit code 2."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """An ArgumentParser whose errors are one line on stderr and exit code 2."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        sys.stderr.write(f"{self.prog}: error: {message}\n")
+        raise SystemExit(EXIT_USAGE)
+
+
+def _build_parser() -> _Parser:
+    parser = _Parser(
+        prog="taxel",
+        description="Robotic tactile sensing: contact mechanics, sensors, reconstruction, "
+        "tactile features and active touch.",
+    )
+    parser.add_argument("--version", action="version", version=f"taxel {taxel.__version__}")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    del commands  # subcommands are registered here as the layers land
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line and return its exit code.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments without the program name; defaults to ``sys.argv[1:]``.
+
+    Returns
+    -------
+    int
+        0 on success, 2 on bad input.
+    """
+    parser = _build_parser()
+    arguments = parser.parse_args(argv)
+    handler: Callable[[argparse.Namespace], int] | None = getattr(arguments, "handler", None)
+    if handler is None:
+        parser.print_help()
+        return 0
+    try:
+        return handler(arguments)
+    except (CommandLineError, ValueError, TypeError, OSError) as error:
+        message = str(error).splitlines()[0] if str(error) else type(error).__name__
+        sys.stderr.write(f"taxel {arguments.command}: error: {message}\n")
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        sys.stderr.write("taxel: interrupted\n")
+        return 130
