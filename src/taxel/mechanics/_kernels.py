@@ -35,7 +35,9 @@ __all__ = ["displacement_kernel", "strain_kernel"]
 
 # a bonded layer's response has decayed to nothing this many thicknesses from the load
 _LAYER_REACH = 30.0
-_GAUSS_POINTS = 4
+# Gauss points per cell side: at least 4, and enough to resolve the correction's own scale
+_MIN_GAUSS_POINTS = 4
+_POINTS_PER_DECAY_LENGTH = 8.0
 
 
 def offsets(count: int, step: float) -> np.ndarray:
@@ -65,13 +67,17 @@ def _hankel_table(
 def _cell_average(
     table: tuple[np.ndarray, np.ndarray],
     far_field: Callable[[np.ndarray], np.ndarray],
+    decay_length: float,
     dy: float,
     dx: float,
     y: np.ndarray,
     x: np.ndarray,
 ) -> np.ndarray:
     """Integrate the tabulated correction over each cell (Gauss-Legendre), per unit pressure."""
-    nodes, weights = np.polynomial.legendre.leggauss(_GAUSS_POINTS)
+    count = max(
+        _MIN_GAUSS_POINTS, int(np.ceil(_POINTS_PER_DECAY_LENGTH * max(dy, dx) / decay_length))
+    )
+    nodes, weights = np.polynomial.legendre.leggauss(count)
     radii, values = table
     total = np.zeros(np.broadcast_shapes(y.shape, x.shape))
     for node_y, weight_y in zip(nodes, weights, strict=True):
@@ -108,7 +114,7 @@ def displacement_kernel(
     def far(r: np.ndarray) -> np.ndarray:
         return point_load_displacement(r, 0.0, 1.0, material)
 
-    return halfspace + _cell_average(table, far, dy, dx, y, x)
+    return halfspace + _cell_average(table, far, 2.0 * thickness, dy, dx, y, x)
 
 
 def strain_kernel(
@@ -139,4 +145,4 @@ def strain_kernel(
     def far(r: np.ndarray) -> np.ndarray:
         return point_load_strain(r, depth, 1.0, material)
 
-    return halfspace + _cell_average(table, far, dy, dx, y, x)
+    return halfspace + _cell_average(table, far, 2.0 * thickness - depth, dy, dx, y, x)
