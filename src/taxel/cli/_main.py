@@ -33,7 +33,10 @@ def _build_parser() -> _Parser:
     )
     parser.add_argument("--version", action="version", version=f"taxel {taxel.__version__}")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    del commands  # subcommands are registered here as the layers land
+    from taxel.cli import _demo
+
+    for module in (_demo,):
+        module.register(commands)
     return parser
 
 
