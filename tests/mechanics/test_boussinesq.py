@@ -11,6 +11,7 @@ from taxel.mechanics import (
     point_load_stress,
     rectangle_displacement,
     rectangle_strain,
+    rectangle_stress,
 )
 
 COVER = ElasticMaterial(1e6, 0.3)
@@ -119,3 +120,19 @@ def test_bad_inputs():
         rectangle_displacement(0.0, 0.0, -1.0, 1.0, COVER)
     with pytest.raises(ValueError, match="`normal_force` must be finite"):
         point_load_stress(0.0, 1e-3, np.nan)
+
+
+@pytest.mark.parametrize(("x", "y"), [(0.0, 0.0), (0.3e-3, -0.2e-3), (2e-3, 1e-3)])
+def test_rectangle_stress_is_integral_of_point_load(x, y):
+    x1, x2, y1, y2 = -0.25e-3, 0.35e-3, -0.3e-3, 0.2e-3
+    expected, _ = integrate.dblquad(
+        lambda b, a: point_load_stress(np.hypot(x - a, y - b), DEPTH, 1.0),
+        x1,
+        x2,
+        y1,
+        y2,
+        epsabs=0,
+        epsrel=1e-12,
+    )
+    got = rectangle_stress(x, y, (x1, x2, y1, y2), DEPTH)
+    assert got == pytest.approx(expected, rel=1e-9)

@@ -6,6 +6,7 @@ import pytest
 from taxel.mechanics import (
     ElasticMaterial,
     depth_strain_operator,
+    depth_stress_operator,
     rectangle_displacement,
     rectangle_strain,
     surface_displacement_operator,
@@ -26,6 +27,9 @@ def _operators():
     yield depth_strain_operator(shape, SPACING, 1e-3, COVER, periodic=True)
     yield depth_strain_operator(shape, SPACING, 1e-3, RUBBER, thickness=3e-3)
     yield depth_strain_operator(shape, SPACING, 1e-3, RUBBER, periodic=True, thickness=3e-3)
+    yield depth_stress_operator(shape, SPACING, 1e-3, COVER)
+    yield depth_stress_operator(shape, SPACING, 1e-3, RUBBER, thickness=3e-3)
+    yield depth_stress_operator(shape, SPACING, 1e-3, RUBBER, periodic=True)
 
 
 @pytest.mark.parametrize("operator", list(_operators()), ids=repr)
@@ -123,3 +127,14 @@ def test_bad_inputs():
         operator.apply(np.full((4, 4), np.nan))
     with pytest.raises(ValueError, match="`depth` must be <= `thickness`"):
         depth_strain_operator((4, 4), 1e-3, 2e-3, COVER, thickness=1e-3)
+
+
+def test_stress_transmits_a_wide_load_undiminished():
+    load = np.zeros((64, 64))
+    load[8:56, 8:56] = 1e4
+    centre = (slice(30, 34), slice(30, 34))
+    for operator in (
+        depth_stress_operator((64, 64), 0.25e-3, 0.5e-3, RUBBER),
+        depth_stress_operator((64, 64), 0.25e-3, 0.5e-3, RUBBER, thickness=1e-3),
+    ):
+        assert np.allclose(operator.apply(load)[centre], -1e4, rtol=2e-3)

@@ -8,9 +8,12 @@ from taxel.mechanics import (
     ElasticMaterial,
     halfspace_displacement_transfer,
     halfspace_strain_transfer,
+    halfspace_stress_transfer,
     layer_displacement_transfer,
     layer_strain_transfer,
+    layer_stress_transfer,
     point_load_strain,
+    point_load_stress,
 )
 
 COVER = ElasticMaterial(1e6, 0.3)
@@ -58,18 +61,21 @@ def _layer_bvp(q, thickness, material, depth):
         rhs, boundary, z, np.zeros((4, z.size)), tol=1e-10, max_nodes=200000
     )
     assert solution.success
-    return solution.sol(0.0)[2], solution.sol(depth)[3]
+    u, _, _, dw = solution.sol(depth)
+    stress = lam * (-q * u + dw) + 2 * mu * dw
+    return solution.sol(0.0)[2], dw, stress
 
 
 @pytest.mark.parametrize("qh", [0.05, 0.7, 2.0, 6.0])
 def test_layer_matches_boundary_value_solution(qh):
     thickness, depth = 2e-3, 0.8e-3
     q = qh / thickness
-    displacement, strain = _layer_bvp(q, thickness, COVER, depth)
+    displacement, strain, stress = _layer_bvp(q, thickness, COVER, depth)
     assert layer_displacement_transfer(q, thickness, COVER) == pytest.approx(
         displacement, rel=1e-6
     )
     assert layer_strain_transfer(q, depth, thickness, COVER) == pytest.approx(strain, rel=1e-6)
+    assert layer_stress_transfer(q, depth, thickness, COVER) == pytest.approx(stress, rel=1e-6)
 
 
 def test_layer_tends_to_halfspace_when_thick():
@@ -113,3 +119,24 @@ def test_bad_inputs():
         layer_strain_transfer(1.0, 2e-3, 1e-3, COVER)
     with pytest.raises(ValueError, match="`thickness` must be > 0"):
         layer_displacement_transfer(1.0, 0.0, COVER)
+
+
+@pytest.mark.parametrize("q", [200.0, 1500.0])
+def test_halfspace_stress_is_hankel_transform_of_point_load(q):
+    depth = 1e-3
+    value, _ = integrate.quad(
+        lambda r: 2 * np.pi * r * point_load_stress(r, depth, 1.0) * special.j0(q * r),
+        0,
+        5.0,
+        limit=20000,
+        epsabs=1e-14,
+    )
+    assert halfspace_stress_transfer(q, depth) == pytest.approx(value, rel=1e-6)
+
+
+def test_layer_stress_limits():
+    q = np.array([0.0, 1e-3, 500.0, 3000.0])
+    assert layer_stress_transfer(q[:2], 0.5e-3, 1e-3, COVER) == pytest.approx(-1.0, rel=1e-6)
+    assert np.allclose(
+        layer_stress_transfer(q, 1e-3, 1.0, COVER), halfspace_stress_transfer(q, 1e-3), rtol=1e-12
+    )

@@ -7,12 +7,13 @@ Plane strain (the chapter's one-dimensional model, eqs. 25.1-25.5)
     plane_strain_strain_matrix, plane_strain_displacement_matrix
 Three dimensions (Boussinesq, Love)
     point_load_displacement, point_load_stress, point_load_strain,
-    rectangle_strain, rectangle_displacement
+    rectangle_strain, rectangle_stress, rectangle_displacement
 Fourier transfer functions (half-space, and a layer bonded to a rigid base)
-    halfspace_displacement_transfer, halfspace_strain_transfer,
-    layer_displacement_transfer, layer_strain_transfer
+    halfspace_displacement_transfer, halfspace_strain_transfer, halfspace_stress_transfer,
+    layer_displacement_transfer, layer_strain_transfer, layer_stress_transfer
 Grid operators (with adjoints; periodic or zero-padded linear convolution)
-    ConvolutionOperator, surface_displacement_operator, depth_strain_operator
+    ConvolutionOperator, surface_displacement_operator, depth_strain_operator,
+    depth_stress_operator
 Closed-form contacts
     hertz_sphere, hertz_cylinder, flat_punch
 Contact with unknown contact area
@@ -29,6 +30,7 @@ from taxel.mechanics._boussinesq import (
     point_load_stress,
     rectangle_displacement,
     rectangle_strain,
+    rectangle_stress,
 )
 from taxel.mechanics._contact import ContactResult, solve_contact
 from taxel.mechanics._hertz import (
@@ -55,6 +57,7 @@ from taxel.mechanics._materials import ElasticMaterial, effective_modulus
 from taxel.mechanics._operators import (
     ConvolutionOperator,
     depth_strain_operator,
+    depth_stress_operator,
     surface_displacement_operator,
 )
 from taxel.mechanics._plane_strain import (
@@ -68,8 +71,10 @@ from taxel.mechanics._textures import PerforatedScreen, StiffFoam, WoodRasp
 from taxel.mechanics._transfer import (
     halfspace_displacement_transfer,
     halfspace_strain_transfer,
+    halfspace_stress_transfer,
     layer_displacement_transfer,
     layer_strain_transfer,
+    layer_stress_transfer,
 )
 
 __all__ = [
@@ -96,16 +101,19 @@ __all__ = [
     "Washer",
     "WoodRasp",
     "depth_strain_operator",
+    "depth_stress_operator",
     "describe_indenters",
     "effective_modulus",
     "flat_punch",
     "grid_coordinates",
     "halfspace_displacement_transfer",
     "halfspace_strain_transfer",
+    "halfspace_stress_transfer",
     "hertz_cylinder",
     "hertz_sphere",
     "layer_displacement_transfer",
     "layer_strain_transfer",
+    "layer_stress_transfer",
     "line_load_displacement",
     "line_load_strain",
     "make_indenter",
@@ -116,6 +124,7 @@ __all__ = [
     "point_load_stress",
     "rectangle_displacement",
     "rectangle_strain",
+    "rectangle_stress",
     "solve_contact",
     "strip_load_strain",
     "surface_displacement_operator",

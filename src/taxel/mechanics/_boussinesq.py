@@ -22,6 +22,7 @@ __all__ = [
     "point_load_stress",
     "rectangle_displacement",
     "rectangle_strain",
+    "rectangle_stress",
 ]
 
 
@@ -210,6 +211,76 @@ def rectangle_strain(
         + corner(x - x2, y - y2, depth, nu)
     )
     return pressure * (1 + nu) / (2 * np.pi * material.youngs_modulus) * total
+
+
+def _rectangle_stress_corner(x: np.ndarray, y: np.ndarray, depth: float) -> np.ndarray:
+    """Corner term of the rectangle stress integral."""
+    big_r = np.sqrt(x**2 + y**2 + depth**2)
+    return np.arctan2(x * y, depth * big_r) + (x * y * depth / big_r) * (
+        1.0 / (x**2 + depth**2) + 1.0 / (y**2 + depth**2)
+    )
+
+
+def rectangle_stress(
+    x: Any,
+    y: Any,
+    bounds: tuple[float, float, float, float],
+    depth: float,
+    *,
+    pressure: float = 1.0,
+) -> np.ndarray:
+    r"""Normal stress sigma_z at depth d under a uniformly loaded rectangle on a half-space [Pa].
+
+    Independent of the material. This is what a stress-sensing cell (a piezoresistive or
+    piezoelectric element, or the dielectric of a capacitive cell) under the cover feels.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Horizontal position of the field points [m].
+    bounds : tuple of float
+        The loaded rectangle (x1, x2, y1, y2) [m].
+    depth : float
+        Depth d [m], > 0.
+    pressure : float, default 1.0
+        Uniform pressure on the rectangle [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        sigma_z [Pa], negative (compressive) under a pressing load.
+
+    Notes
+    -----
+    The integral of Boussinesq's :math:`-3 P z^3 / (2\pi\rho^5)` over the rectangle:
+
+    .. math:: \sigma_z = -\frac{p}{2\pi}\left[S(x-x_1, y-y_1) - S(x-x_2, y-y_1)
+              - S(x-x_1, y-y_2) + S(x-x_2, y-y_2)\right]
+
+    with :math:`S(X, Y) = \mathrm{atan2}(XY, dR) + \frac{XYd}{R}\left[\frac{1}{X^2+d^2}
+    + \frac{1}{Y^2+d^2}\right]` (the classical Holl/Newmark corner formula).
+
+    Examples
+    --------
+    >>> huge = (-1.0, 1.0, -1.0, 1.0)  # a uniform load is transmitted undiminished
+    >>> print(f"{float(rectangle_stress(0.0, 0.0, huge, 1e-3)):.6f}")
+    -1.000000
+    """
+    x = as_finite_array("x", x)
+    y = as_finite_array("y", y)
+    x1, x2, y1, y2 = (check_finite("bounds", value) for value in bounds)
+    if not (x1 < x2 and y1 < y2):
+        raise ValueError(f"`bounds` must satisfy x1 < x2 and y1 < y2, got {bounds}")
+    depth = check_positive("depth", depth)
+    pressure = check_finite("pressure", pressure)
+    corner = _rectangle_stress_corner
+    total = (
+        corner(x - x1, y - y1, depth)
+        - corner(x - x2, y - y1, depth)
+        - corner(x - x1, y - y2, depth)
+        + corner(x - x2, y - y2, depth)
+    )
+    return -pressure / (2 * np.pi) * total
 
 
 def _log_x_plus_hypot(x: np.ndarray, y: np.ndarray) -> np.ndarray:

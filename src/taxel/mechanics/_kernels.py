@@ -21,17 +21,21 @@ from scipy import integrate, special
 from taxel.mechanics._boussinesq import (
     point_load_displacement,
     point_load_strain,
+    point_load_stress,
     rectangle_displacement,
     rectangle_strain,
+    rectangle_stress,
 )
 from taxel.mechanics._materials import ElasticMaterial
 from taxel.mechanics._transfer import (
     halfspace_strain_transfer,
+    halfspace_stress_transfer,
     layer_displacement_transfer,
     layer_strain_transfer,
+    layer_stress_transfer,
 )
 
-__all__ = ["displacement_kernel", "strain_kernel"]
+__all__ = ["depth_kernel", "displacement_kernel"]
 
 # a bonded layer's response has decayed to nothing this many thicknesses from the load
 _LAYER_REACH = 30.0
@@ -117,7 +121,31 @@ def displacement_kernel(
     return halfspace + _cell_average(table, far, 2.0 * thickness, dy, dx, y, x)
 
 
-def strain_kernel(
+def _strain_parts(depth: float, material: ElasticMaterial, thickness: float):
+    """Half-space cell kernel, transfer difference and point-load far field of eps_z."""
+    return (
+        lambda x, y, bounds: rectangle_strain(x, y, bounds, depth, material),
+        lambda q: layer_strain_transfer(q, depth, thickness, material)
+        - halfspace_strain_transfer(q, depth, material),
+        lambda r: point_load_strain(r, depth, 1.0, material),
+    )
+
+
+def _stress_parts(depth: float, material: ElasticMaterial, thickness: float):
+    """Half-space cell kernel, transfer difference and point-load far field of sigma_z."""
+    return (
+        lambda x, y, bounds: rectangle_stress(x, y, bounds, depth),
+        lambda q: layer_stress_transfer(q, depth, thickness, material)
+        - halfspace_stress_transfer(q, depth),
+        lambda r: point_load_stress(r, depth, 1.0),
+    )
+
+
+_DEPTH_QUANTITIES = {"strain": _strain_parts, "stress": _stress_parts}
+
+
+def depth_kernel(
+    quantity: str,
     y: np.ndarray,
     x: np.ndarray,
     spacing: tuple[float, float],
@@ -126,23 +154,12 @@ def strain_kernel(
     *,
     thickness: float | None = None,
 ) -> np.ndarray:
-    """Strain eps_z at depth under (y, x) per unit pressure on the cell centred at 0 [1/Pa]."""
+    """eps_z [1/Pa] or sigma_z [-] at depth under (y, x) per unit pressure on the cell at 0."""
     dy, dx = spacing
-    halfspace = rectangle_strain(x, y, (-dx / 2, dx / 2, -dy / 2, dy / 2), depth, material)
+    halfspace_cell, difference, far = _DEPTH_QUANTITIES[quantity](depth, material, thickness)
+    halfspace = halfspace_cell(x, y, (-dx / 2, dx / 2, -dy / 2, dy / 2))
     if thickness is None:
         return halfspace
-    reach = _LAYER_REACH * thickness
-    table = _hankel_table(
-        lambda q: q
-        * (
-            layer_strain_transfer(q, depth, thickness, material)
-            - halfspace_strain_transfer(q, depth, material)
-        ),
-        2.0 * thickness - depth,
-        reach,
-    )
-
-    def far(r: np.ndarray) -> np.ndarray:
-        return point_load_strain(r, depth, 1.0, material)
-
-    return halfspace + _cell_average(table, far, 2.0 * thickness - depth, dy, dx, y, x)
+    decay = 2.0 * thickness - depth
+    table = _hankel_table(lambda q: q * difference(q), decay, _LAYER_REACH * thickness)
+    return halfspace + _cell_average(table, far, decay, dy, dx, y, x)

@@ -14,19 +14,22 @@ import numpy as np
 from scipy import fft
 
 from taxel._validation import as_finite_array, check_positive
-from taxel.mechanics._kernels import displacement_kernel, offsets, strain_kernel
+from taxel.mechanics._kernels import depth_kernel, displacement_kernel, offsets
 from taxel.mechanics._materials import ElasticMaterial
 from taxel.mechanics._transfer import (
     halfspace_displacement_transfer,
     halfspace_strain_transfer,
+    halfspace_stress_transfer,
     layer_displacement_transfer,
     layer_strain_transfer,
+    layer_stress_transfer,
 )
 
 __all__ = [
     "ConvolutionOperator",
     "as_spacing",
     "depth_strain_operator",
+    "depth_stress_operator",
     "surface_displacement_operator",
 ]
 
@@ -209,6 +212,48 @@ def surface_displacement_operator(
     )
 
 
+def _depth_operator(
+    quantity: str,
+    shape: Any,
+    spacing: Any,
+    depth: float,
+    material: ElasticMaterial,
+    periodic: bool,
+    thickness: float | None,
+) -> ConvolutionOperator:
+    """Shared construction of the operators to a quantity at depth (strain or stress)."""
+    shape = _as_shape(shape)
+    spacing = as_spacing(spacing)
+    depth = check_positive("depth", depth)
+    if thickness is not None:
+        thickness = check_positive("thickness", thickness)
+        if depth > thickness:
+            raise ValueError(f"`depth` must be <= `thickness` ({thickness:g} m), got {depth:g}")
+    if periodic:
+        magnitude, ky, kx = _wavenumbers(shape, spacing)
+        if quantity == "strain":
+            transfer = (
+                halfspace_strain_transfer(magnitude, depth, material)
+                if thickness is None
+                else layer_strain_transfer(magnitude, depth, thickness, material)
+            )
+        else:
+            transfer = (
+                halfspace_stress_transfer(magnitude, depth)
+                if thickness is None
+                else layer_stress_transfer(magnitude, depth, thickness, material)
+            )
+        return ConvolutionOperator(
+            transfer * _cell_factor(ky, kx, spacing), shape, spacing, periodic=True
+        )
+    y = offsets(shape[0], spacing[0])[:, None]
+    x = offsets(shape[1], spacing[1])[None, :]
+    kernel = depth_kernel(quantity, y, x, spacing, depth, material, thickness=thickness)
+    return ConvolutionOperator(
+        _embed(kernel, shape), shape, spacing, periodic=False, kernel=kernel
+    )
+
+
 def depth_strain_operator(
     shape: Any,
     spacing: Any,
@@ -248,25 +293,30 @@ def depth_strain_operator(
     >>> bool(strain[8, 8] < 0)  # compressed under the load
     True
     """
-    shape = _as_shape(shape)
-    spacing = as_spacing(spacing)
-    depth = check_positive("depth", depth)
-    if thickness is not None:
-        thickness = check_positive("thickness", thickness)
-        if depth > thickness:
-            raise ValueError(f"`depth` must be <= `thickness` ({thickness:g} m), got {depth:g}")
-    if periodic:
-        magnitude, ky, kx = _wavenumbers(shape, spacing)
-        if thickness is None:
-            transfer = halfspace_strain_transfer(magnitude, depth, material)
-        else:
-            transfer = layer_strain_transfer(magnitude, depth, thickness, material)
-        return ConvolutionOperator(
-            transfer * _cell_factor(ky, kx, spacing), shape, spacing, periodic=True
-        )
-    y = offsets(shape[0], spacing[0])[:, None]
-    x = offsets(shape[1], spacing[1])[None, :]
-    kernel = strain_kernel(y, x, spacing, depth, material, thickness=thickness)
-    return ConvolutionOperator(
-        _embed(kernel, shape), shape, spacing, periodic=False, kernel=kernel
-    )
+    return _depth_operator("strain", shape, spacing, depth, material, periodic, thickness)
+
+
+def depth_stress_operator(
+    shape: Any,
+    spacing: Any,
+    depth: float,
+    material: ElasticMaterial,
+    *,
+    periodic: bool = False,
+    thickness: float | None = None,
+) -> ConvolutionOperator:
+    """Pressure on each cell [Pa] -> normal stress sigma_z at depth under cell centres [Pa].
+
+    What stress-sensing cells (piezoresistive, piezoelectric, the dielectric of a capacitive
+    cell) under the cover feel. Parameters as `depth_strain_operator`; for a half-space the
+    result does not depend on the material.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> op = depth_stress_operator((16, 16), 0.5e-3, 1e-3, ElasticMaterial(1e6, 0.5),
+    ...                            periodic=True)
+    >>> float(op.apply(np.full((16, 16), 1e4))[8, 8])  # uniform load: sigma_z = -p
+    -10000.0
+    """
+    return _depth_operator("stress", shape, spacing, depth, material, periodic, thickness)

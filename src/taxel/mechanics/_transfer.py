@@ -23,8 +23,10 @@ from taxel.mechanics._materials import ElasticMaterial
 __all__ = [
     "halfspace_displacement_transfer",
     "halfspace_strain_transfer",
+    "halfspace_stress_transfer",
     "layer_displacement_transfer",
     "layer_strain_transfer",
+    "layer_stress_transfer",
 ]
 
 # below this q h the layer formulas lose digits to cancellation; use the series instead
@@ -87,6 +89,26 @@ def halfspace_strain_transfer(
     nu = material.poisson_ratio
     qd = q * depth
     return -(1 + nu) / material.youngs_modulus * (1 - 2 * nu + qd) * np.exp(-qd)
+
+
+def halfspace_stress_transfer(wavenumber: Any, depth: float) -> np.ndarray:
+    r"""Normal stress sigma_z at depth d per unit surface pressure of a half-space [-].
+
+    Notes
+    -----
+    .. math:: S(q) = -(1 + q d)\,e^{-q d}
+
+    independent of the material; S(0) = -1: a uniform load reaches every depth undiminished.
+
+    Examples
+    --------
+    >>> float(halfspace_stress_transfer(0.0, 1e-3))
+    -1.0
+    """
+    q = _wavenumber(wavenumber)
+    depth = check_positive("depth", depth)
+    qd = q * depth
+    return -(1 + qd) * np.exp(-qd)
 
 
 def _kappa(material: ElasticMaterial) -> float:
@@ -209,3 +231,58 @@ def layer_strain_transfer(
         + kappa * (s + 2 * nu - 1) * np.exp(-(4 * t - s))
     )
     return (1 + nu) / (material.youngs_modulus * _layer_denominator(t, kappa)) * bracket
+
+
+def layer_stress_transfer(
+    wavenumber: Any, depth: float, thickness: float, material: ElasticMaterial
+) -> np.ndarray:
+    r"""Normal stress sigma_z at depth d per unit pressure in a layer bonded to a rigid base [-].
+
+    Parameters
+    ----------
+    wavenumber : array_like
+        q >= 0 [rad/m].
+    depth : float
+        Depth d [m], 0 < d <= h.
+    thickness : float
+        Layer thickness h [m].
+    material : ElasticMaterial
+        The layer (only nu matters).
+
+    Returns
+    -------
+    numpy.ndarray
+        S(q) [-]; S(0) = -1.
+
+    Notes
+    -----
+    With :math:`s = q d`, :math:`t = q h`, :math:`\kappa = 3 - 4\nu` and D the denominator of
+    `layer_displacement_transfer`,
+
+    .. math:: S = \frac{1}{D}\Big[-\kappa(1+s)e^{-s} + c_1 e^{-(2t-s)} + c_2 e^{-(2t+s)}
+              + \kappa(s-1)e^{-(4t-s)}\Big]
+
+    .. math:: c_{1,2} = -8\nu^2 + 12\nu + 2 s t \pm s - 2t^2 \mp 2t - 5
+
+    Examples
+    --------
+    >>> cover = ElasticMaterial(1e6, 0.3)
+    >>> print(f"{float(layer_stress_transfer(0.0, 0.5e-3, 1e-3, cover)):.6f}")
+    -1.000000
+    """
+    q = _wavenumber(wavenumber)
+    h = check_positive("thickness", thickness)
+    d = check_positive("depth", depth)
+    if d > h:
+        raise ValueError(f"`depth` must be <= `thickness` ({h:g} m), got {d:g}")
+    nu, kappa = material.poisson_ratio, _kappa(material)
+    s, t = q * d, q * h
+    c1 = -8 * nu**2 + 12 * nu + 2 * s * t + s - 2 * t**2 - 2 * t - 5
+    c2 = -8 * nu**2 + 12 * nu + 2 * s * t - s - 2 * t**2 + 2 * t - 5
+    bracket = (
+        -kappa * (1 + s) * np.exp(-s)
+        + c1 * np.exp(-(2 * t - s))
+        + c2 * np.exp(-(2 * t + s))
+        + kappa * (s - 1) * np.exp(-(4 * t - s))
+    )
+    return bracket / _layer_denominator(t, kappa)
