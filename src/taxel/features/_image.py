@@ -115,7 +115,7 @@ def pitch_pair(sensor_or_pitch: Any) -> tuple[float, float]:
     (0.001, 0.002)
     """
     value = getattr(sensor_or_pitch, "taxel_pitch", sensor_or_pitch)
-    if isinstance(value, (tuple, list, np.ndarray)):
+    if isinstance(value, tuple | list | np.ndarray):
         if len(value) != 2:
             raise ValueError(
                 f"`sensor_or_pitch` must be a pitch or a (row, column) pair, got {value!r}"
@@ -125,7 +125,7 @@ def pitch_pair(sensor_or_pitch: Any) -> tuple[float, float]:
             check_positive("sensor_or_pitch[1]", value[1]),
         )
     else:
-        if isinstance(value, (str, bytes)):
+        if isinstance(value, str | bytes):
             raise TypeError(f"`sensor_or_pitch` must be a number in metres, got {value!r}")
         pitch = check_positive("sensor_or_pitch", value)
         pair = (pitch, pitch)
@@ -252,10 +252,7 @@ def prepare(
     else:
         smooth = values
     noise = _noise_sigma(values, smooth, smoothing)
-    if baseline is None:
-        level = float(smooth.min())
-    else:
-        level = check_finite("baseline", baseline)
+    level = float(smooth.min()) if baseline is None else check_finite("baseline", baseline)
     peak = float(smooth.max())
     contrast = peak - level
     floor = max(_RELATIVE_FLOOR * max(abs(peak), abs(level)), 1e-30)
