@@ -55,6 +55,8 @@ class Prepared:
         (row pitch, column pitch) [m].
     baseline, noise, contrast : float
         Background level, noise sigma of `smooth`, and peak minus baseline [image units].
+    raw_noise : float
+        Noise sigma of `image` itself [image units].
     low, high : float
         Hysteresis thresholds on `smooth` [image units].
     mask : numpy.ndarray (uint8)
@@ -72,6 +74,7 @@ class Prepared:
     baseline: float
     noise: float
     contrast: float
+    raw_noise: float
     low: float
     high: float
     mask: np.ndarray
@@ -186,8 +189,8 @@ def _as_image(image: Any) -> np.ndarray:
     return image32
 
 
-def _noise_sigma(image: np.ndarray, smooth: np.ndarray, smoothing: float) -> float:
-    """Noise sigma of `smooth`, from the median absolute high-pass residual of `image`."""
+def _noise_sigma(image: np.ndarray, smooth: np.ndarray, smoothing: float) -> tuple[float, float]:
+    """Noise sigma of `image` and of `smooth`, from the median absolute high-pass residual."""
     if smoothing == 0:
         residual = image - cv2.GaussianBlur(image, (0, 0), 1.0, borderType=cv2.BORDER_REFLECT)
         smoothing = 1.0
@@ -204,8 +207,8 @@ def _noise_sigma(image: np.ndarray, smooth: np.ndarray, smoothing: float) -> flo
         gain = math.sqrt(min(squares, 1.0))
     # subsample 2x2 on large images: the median of 4k values is as good and 4x cheaper
     sample = residual[::2, ::2] if residual.size > 4096 else residual
-    mad = float(np.median(np.abs(sample)))
-    return 1.4826 * mad / residual_gain * gain
+    raw = 1.4826 * float(np.median(np.abs(sample))) / residual_gain
+    return raw, raw * gain
 
 
 def prepare(
@@ -251,7 +254,7 @@ def prepare(
         smooth = cv2.GaussianBlur(values, (0, 0), smoothing, borderType=cv2.BORDER_REFLECT)
     else:
         smooth = values
-    noise = _noise_sigma(values, smooth, smoothing)
+    raw_noise, noise = _noise_sigma(values, smooth, smoothing)
     level = float(smooth.min()) if baseline is None else check_finite("baseline", baseline)
     peak = float(smooth.max())
     contrast = peak - level
@@ -261,7 +264,7 @@ def prepare(
     if contrast <= max(K_HIGH * noise, floor):
         empty = np.zeros(values.shape, np.uint8)
         return Prepared(
-            values, smooth, pitch, level, noise, contrast, low, high, empty,
+            values, smooth, pitch, level, noise, contrast, raw_noise, low, high, empty,
             empty.astype(np.int32), 0, bool(calibrated),
         )  # fmt: skip
     candidates = (smooth >= low).view(np.uint8)
@@ -272,6 +275,6 @@ def prepare(
     labels = keep[labels]
     mask = (labels > 0).view(np.uint8)
     return Prepared(
-        values, smooth, pitch, level, noise, contrast, low, high, mask, labels,
+        values, smooth, pitch, level, noise, contrast, raw_noise, low, high, mask, labels,
         int(seeded.sum()), bool(calibrated),
     )  # fmt: skip
