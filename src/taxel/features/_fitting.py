@@ -97,7 +97,7 @@ def circle_fit_core(x: np.ndarray, y: np.ndarray) -> CircleFit:
         solution = np.zeros(3)
     a, b = solution[0] / 2, solution[1] / 2
     radius_sq = solution[2] + a * a + b * b
-    if not math.isfinite(radius_sq) or radius_sq <= 0 or math.hypot(a, b) > 1e6:
+    if not math.isfinite(radius_sq) or radius_sq <= 0 or math.hypot(a, b) > 1e4:
         return CircleFit((math.nan, math.nan), math.inf, math.inf, int(x.size))
     radius = math.sqrt(radius_sq)
     for _ in range(_GEOMETRIC_STEPS):
@@ -108,6 +108,9 @@ def circle_fit_core(x: np.ndarray, y: np.ndarray) -> CircleFit:
         residual = distance - radius
         step, *_ = np.linalg.lstsq(jacobian, -residual, rcond=None)
         a, b, radius = a + step[0], b + step[1], abs(radius + step[2])
+    # a radius 10^4 times the points' spread bows by < 1e-4 of it: collinear, not a circle
+    if not math.isfinite(radius) or radius > 1e4:
+        return CircleFit((math.nan, math.nan), math.inf, math.inf, int(x.size))
     residual = np.hypot(u - a, v - b) - radius
     rms = math.sqrt(float(residual @ residual) / u.size)
     center = (float(mean_x + a * scale), float(mean_y + b * scale))
