@@ -7,10 +7,14 @@ import sys
 from collections.abc import Callable, Sequence
 
 import taxel
+from taxel.cli import _features
 
 __all__ = ["CommandLineError", "main"]
 
 EXIT_USAGE = 2
+
+# each subcommand module exposes register(commands); they land here as the layers do
+_REGISTRATIONS = [_features.register]
 
 
 class CommandLineError(Exception):
@@ -33,7 +37,8 @@ def _build_parser() -> _Parser:
     )
     parser.add_argument("--version", action="version", version=f"taxel {taxel.__version__}")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    del commands  # subcommands are registered here as the layers land
+    for register in _REGISTRATIONS:
+        register(commands)
     return parser
 
 
