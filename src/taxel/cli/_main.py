@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import importlib
 import sys
 from collections.abc import Callable, Sequence
 
@@ -11,6 +12,9 @@ import taxel
 __all__ = ["CommandLineError", "main"]
 
 EXIT_USAGE = 2
+
+# each subcommand module (taxel/cli/_NAME.py) exposes register(commands)
+_SUBCOMMANDS = ("_demo", "_features")
 
 
 class CommandLineError(Exception):
@@ -33,10 +37,8 @@ def _build_parser() -> _Parser:
     )
     parser.add_argument("--version", action="version", version=f"taxel {taxel.__version__}")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    from taxel.cli import _demo
-
-    for module in (_demo,):
-        module.register(commands)
+    for name in _SUBCOMMANDS:
+        importlib.import_module(f"taxel.cli.{name}").register(commands)
     return parser
 
 
