@@ -19,6 +19,12 @@ Capacitive (eqs. 25.7-25.13, Figure 25.5)
 -----------------------------------------
 CapacitiveTransducer, plate_capacitance, detector_voltage,
 capacitance_from_detector_voltage, strain_from_detector_voltage, VACUUM_PERMITTIVITY
+
+Piezoelectric (eqs. 25.14-25.18, Figures 25.6-25.7)
+---------------------------------------------------
+PiezoelectricTransducer, piezoelectric_charge, piezoelectric_voltage,
+charge_amplifier_output, charge_amplifier_stress,
+current_amplifier_output, current_amplifier_stress, PVDF_D33, PVDF_RELATIVE_PERMITTIVITY
 """
 
 from taxel.transducers._capacitive import (
@@ -30,6 +36,17 @@ from taxel.transducers._capacitive import (
     strain_from_detector_voltage,
 )
 from taxel.transducers._common import Transducer
+from taxel.transducers._piezoelectric import (
+    PVDF_D33,
+    PVDF_RELATIVE_PERMITTIVITY,
+    PiezoelectricTransducer,
+    charge_amplifier_output,
+    charge_amplifier_stress,
+    current_amplifier_output,
+    current_amplifier_stress,
+    piezoelectric_charge,
+    piezoelectric_voltage,
+)
 from taxel.transducers._resistive import (
     ResistiveTransducer,
     piezoresistive_pressure,
@@ -44,14 +61,23 @@ from taxel.transducers._resistive_matrix import (
 )
 
 __all__ = [
+    "PVDF_D33",
+    "PVDF_RELATIVE_PERMITTIVITY",
     "VACUUM_PERMITTIVITY",
     "CapacitiveTransducer",
+    "PiezoelectricTransducer",
     "ResistiveScanInversion",
     "ResistiveTransducer",
     "Transducer",
     "capacitance_from_detector_voltage",
+    "charge_amplifier_output",
+    "charge_amplifier_stress",
+    "current_amplifier_output",
+    "current_amplifier_stress",
     "detector_voltage",
     "invert_resistive_scan",
+    "piezoelectric_charge",
+    "piezoelectric_voltage",
     "piezoresistive_pressure",
     "piezoresistive_resistance",
     "plate_capacitance",

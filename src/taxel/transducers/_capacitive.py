@@ -351,7 +351,7 @@ class CapacitiveTransducer:
         for name in ("permittivity_temperature_coefficient", "gap_temperature_coefficient"):
             object.__setattr__(self, name, check_finite(name, getattr(self, name)))
 
-    def _detector(self) -> dict[str, float]:
+    def _detector(self) -> dict[str, Any]:
         return {
             "detector_resistance": self.detector_resistance,
             "detector_capacitance": self.detector_capacitance,
