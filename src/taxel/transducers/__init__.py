@@ -25,6 +25,10 @@ Piezoelectric (eqs. 25.14-25.18, Figures 25.6-25.7)
 PiezoelectricTransducer, piezoelectric_charge, piezoelectric_voltage,
 charge_amplifier_output, charge_amplifier_stress,
 current_amplifier_output, current_amplifier_stress, PVDF_D33, PVDF_RELATIVE_PERMITTIVITY
+
+Optical, reflective (Figure 25.8)
+---------------------------------
+ReflectiveOpticalTransducer, reflective_power, reflective_peak_gap, reflective_gap
 """
 
 from taxel.transducers._capacitive import (
@@ -47,6 +51,12 @@ from taxel.transducers._piezoelectric import (
     piezoelectric_charge,
     piezoelectric_voltage,
 )
+from taxel.transducers._reflective import (
+    ReflectiveOpticalTransducer,
+    reflective_gap,
+    reflective_peak_gap,
+    reflective_power,
+)
 from taxel.transducers._resistive import (
     ResistiveTransducer,
     piezoresistive_pressure,
@@ -66,6 +76,7 @@ __all__ = [
     "VACUUM_PERMITTIVITY",
     "CapacitiveTransducer",
     "PiezoelectricTransducer",
+    "ReflectiveOpticalTransducer",
     "ResistiveScanInversion",
     "ResistiveTransducer",
     "Transducer",
@@ -83,6 +94,9 @@ __all__ = [
     "plate_capacitance",
     "readout_resistance",
     "readout_voltage",
+    "reflective_gap",
+    "reflective_peak_gap",
+    "reflective_power",
     "scan_resistive_matrix",
     "strain_from_detector_voltage",
 ]
