@@ -29,8 +29,14 @@ current_amplifier_output, current_amplifier_stress, PVDF_D33, PVDF_RELATIVE_PERM
 Optical, reflective (Figure 25.8)
 ---------------------------------
 ReflectiveOpticalTransducer, reflective_power, reflective_peak_gap, reflective_gap
+
+Optical, frustrated total internal reflection (eq. 25.19, Figure 25.9)
+----------------------------------------------------------------------
+FtirTransducer, is_totally_reflected, critical_angle, contact_area_fraction,
+pressure_from_contact_fraction, camera_image, glass_scratches
 """
 
+from taxel.transducers._camera import camera_image, glass_scratches
 from taxel.transducers._capacitive import (
     VACUUM_PERMITTIVITY,
     CapacitiveTransducer,
@@ -40,6 +46,13 @@ from taxel.transducers._capacitive import (
     strain_from_detector_voltage,
 )
 from taxel.transducers._common import Transducer
+from taxel.transducers._ftir import (
+    FtirTransducer,
+    contact_area_fraction,
+    critical_angle,
+    is_totally_reflected,
+    pressure_from_contact_fraction,
+)
 from taxel.transducers._piezoelectric import (
     PVDF_D33,
     PVDF_RELATIVE_PERMITTIVITY,
@@ -75,23 +88,30 @@ __all__ = [
     "PVDF_RELATIVE_PERMITTIVITY",
     "VACUUM_PERMITTIVITY",
     "CapacitiveTransducer",
+    "FtirTransducer",
     "PiezoelectricTransducer",
     "ReflectiveOpticalTransducer",
     "ResistiveScanInversion",
     "ResistiveTransducer",
     "Transducer",
+    "camera_image",
     "capacitance_from_detector_voltage",
     "charge_amplifier_output",
     "charge_amplifier_stress",
+    "contact_area_fraction",
+    "critical_angle",
     "current_amplifier_output",
     "current_amplifier_stress",
     "detector_voltage",
+    "glass_scratches",
     "invert_resistive_scan",
+    "is_totally_reflected",
     "piezoelectric_charge",
     "piezoelectric_voltage",
     "piezoresistive_pressure",
     "piezoresistive_resistance",
     "plate_capacitance",
+    "pressure_from_contact_fraction",
     "readout_resistance",
     "readout_voltage",
     "reflective_gap",
