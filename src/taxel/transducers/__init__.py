@@ -34,6 +34,10 @@ Optical, frustrated total internal reflection (eq. 25.19, Figure 25.9)
 ----------------------------------------------------------------------
 FtirTransducer, is_totally_reflected, critical_angle, contact_area_fraction,
 pressure_from_contact_fraction, camera_image, glass_scratches
+
+Optical fiber, microbend (Figure 25.11)
+---------------------------------------
+MicrobendTransducer, microbend_power, microbend_line_loads, separable_pressure
 """
 
 from taxel.transducers._camera import camera_image, glass_scratches
@@ -52,6 +56,12 @@ from taxel.transducers._ftir import (
     critical_angle,
     is_totally_reflected,
     pressure_from_contact_fraction,
+)
+from taxel.transducers._microbend import (
+    MicrobendTransducer,
+    microbend_line_loads,
+    microbend_power,
+    separable_pressure,
 )
 from taxel.transducers._piezoelectric import (
     PVDF_D33,
@@ -89,6 +99,7 @@ __all__ = [
     "VACUUM_PERMITTIVITY",
     "CapacitiveTransducer",
     "FtirTransducer",
+    "MicrobendTransducer",
     "PiezoelectricTransducer",
     "ReflectiveOpticalTransducer",
     "ResistiveScanInversion",
@@ -106,6 +117,8 @@ __all__ = [
     "glass_scratches",
     "invert_resistive_scan",
     "is_totally_reflected",
+    "microbend_line_loads",
+    "microbend_power",
     "piezoelectric_charge",
     "piezoelectric_voltage",
     "piezoresistive_pressure",
@@ -118,5 +131,6 @@ __all__ = [
     "reflective_peak_gap",
     "reflective_power",
     "scan_resistive_matrix",
+    "separable_pressure",
     "strain_from_detector_voltage",
 ]
