@@ -38,6 +38,11 @@ pressure_from_contact_fraction, camera_image, glass_scratches
 Optical fiber, microbend (Figure 25.11)
 ---------------------------------------
 MicrobendTransducer, microbend_power, microbend_line_loads, separable_pressure
+
+Photoelastic (Figure 25.12)
+---------------------------
+PhotoelasticTransducer, principal_stress_difference, photoelastic_retardation,
+polariscope_intensity, unwrap_retardation, fit_load_scale, PhotoelasticFit
 """
 
 from taxel.transducers._camera import camera_image, glass_scratches
@@ -62,6 +67,15 @@ from taxel.transducers._microbend import (
     microbend_line_loads,
     microbend_power,
     separable_pressure,
+)
+from taxel.transducers._photoelastic import (
+    PhotoelasticFit,
+    PhotoelasticTransducer,
+    fit_load_scale,
+    photoelastic_retardation,
+    polariscope_intensity,
+    principal_stress_difference,
+    unwrap_retardation,
 )
 from taxel.transducers._piezoelectric import (
     PVDF_D33,
@@ -100,6 +114,8 @@ __all__ = [
     "CapacitiveTransducer",
     "FtirTransducer",
     "MicrobendTransducer",
+    "PhotoelasticFit",
+    "PhotoelasticTransducer",
     "PiezoelectricTransducer",
     "ReflectiveOpticalTransducer",
     "ResistiveScanInversion",
@@ -114,17 +130,21 @@ __all__ = [
     "current_amplifier_output",
     "current_amplifier_stress",
     "detector_voltage",
+    "fit_load_scale",
     "glass_scratches",
     "invert_resistive_scan",
     "is_totally_reflected",
     "microbend_line_loads",
     "microbend_power",
+    "photoelastic_retardation",
     "piezoelectric_charge",
     "piezoelectric_voltage",
     "piezoresistive_pressure",
     "piezoresistive_resistance",
     "plate_capacitance",
+    "polariscope_intensity",
     "pressure_from_contact_fraction",
+    "principal_stress_difference",
     "readout_resistance",
     "readout_voltage",
     "reflective_gap",
@@ -133,4 +153,5 @@ __all__ = [
     "scan_resistive_matrix",
     "separable_pressure",
     "strain_from_detector_voltage",
+    "unwrap_retardation",
 ]
