@@ -49,9 +49,11 @@ from taxel.transducers._camera import camera_image, glass_scratches
 from taxel.transducers._capacitive import (
     VACUUM_PERMITTIVITY,
     CapacitiveTransducer,
+    plate_capacitance,
+)
+from taxel.transducers._capacitive_detector import (
     capacitance_from_detector_voltage,
     detector_voltage,
-    plate_capacitance,
     strain_from_detector_voltage,
 )
 from taxel.transducers._common import Transducer
@@ -77,17 +79,19 @@ from taxel.transducers._photoelastic import (
     principal_stress_difference,
     unwrap_retardation,
 )
-from taxel.transducers._piezoelectric import (
-    PVDF_D33,
-    PVDF_RELATIVE_PERMITTIVITY,
-    PiezoelectricTransducer,
+from taxel.transducers._piezo_amplifiers import (
     charge_amplifier_output,
     charge_amplifier_stress,
     current_amplifier_output,
     current_amplifier_stress,
+)
+from taxel.transducers._piezo_film import (
+    PVDF_D33,
+    PVDF_RELATIVE_PERMITTIVITY,
     piezoelectric_charge,
     piezoelectric_voltage,
 )
+from taxel.transducers._piezoelectric import PiezoelectricTransducer
 from taxel.transducers._reflective import (
     ReflectiveOpticalTransducer,
     reflective_gap,
