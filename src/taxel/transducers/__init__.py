@@ -43,6 +43,12 @@ Photoelastic (Figure 25.12)
 ---------------------------
 PhotoelasticTransducer, principal_stress_difference, photoelastic_retardation,
 polariscope_intensity, unwrap_retardation, fit_load_scale, PhotoelasticFit
+
+Non-idealities (each the identity when switched off; randomness only through ``rng``)
+------------------------------------------------------------------------------------
+add_noise, adc_codes, adc_values, quantize, draw_gain_offset, GainOffset,
+draw_faults, TaxelFaults, neighbour_crosstalk,
+play_hysteresis, first_order_lag, creep, add_drift, temperature_dependence
 """
 
 from taxel.transducers._camera import camera_image, glass_scratches
@@ -57,6 +63,13 @@ from taxel.transducers._capacitive_detector import (
     strain_from_detector_voltage,
 )
 from taxel.transducers._common import Transducer
+from taxel.transducers._dynamics import (
+    add_drift,
+    creep,
+    first_order_lag,
+    play_hysteresis,
+    temperature_dependence,
+)
 from taxel.transducers._ftir import (
     FtirTransducer,
     contact_area_fraction,
@@ -69,6 +82,17 @@ from taxel.transducers._microbend import (
     microbend_line_loads,
     microbend_power,
     separable_pressure,
+)
+from taxel.transducers._noise import (
+    GainOffset,
+    TaxelFaults,
+    adc_codes,
+    adc_values,
+    add_noise,
+    draw_faults,
+    draw_gain_offset,
+    neighbour_crosstalk,
+    quantize,
 )
 from taxel.transducers._photoelastic import (
     PhotoelasticFit,
@@ -117,6 +141,7 @@ __all__ = [
     "VACUUM_PERMITTIVITY",
     "CapacitiveTransducer",
     "FtirTransducer",
+    "GainOffset",
     "MicrobendTransducer",
     "PhotoelasticFit",
     "PhotoelasticTransducer",
@@ -124,31 +149,43 @@ __all__ = [
     "ReflectiveOpticalTransducer",
     "ResistiveScanInversion",
     "ResistiveTransducer",
+    "TaxelFaults",
     "Transducer",
+    "adc_codes",
+    "adc_values",
+    "add_drift",
+    "add_noise",
     "camera_image",
     "capacitance_from_detector_voltage",
     "charge_amplifier_output",
     "charge_amplifier_stress",
     "contact_area_fraction",
+    "creep",
     "critical_angle",
     "current_amplifier_output",
     "current_amplifier_stress",
     "detector_voltage",
+    "draw_faults",
+    "draw_gain_offset",
+    "first_order_lag",
     "fit_load_scale",
     "glass_scratches",
     "invert_resistive_scan",
     "is_totally_reflected",
     "microbend_line_loads",
     "microbend_power",
+    "neighbour_crosstalk",
     "photoelastic_retardation",
     "piezoelectric_charge",
     "piezoelectric_voltage",
     "piezoresistive_pressure",
     "piezoresistive_resistance",
     "plate_capacitance",
+    "play_hysteresis",
     "polariscope_intensity",
     "pressure_from_contact_fraction",
     "principal_stress_difference",
+    "quantize",
     "readout_resistance",
     "readout_voltage",
     "reflective_gap",
@@ -157,5 +194,6 @@ __all__ = [
     "scan_resistive_matrix",
     "separable_pressure",
     "strain_from_detector_voltage",
+    "temperature_dependence",
     "unwrap_retardation",
 ]
