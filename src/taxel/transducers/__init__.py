@@ -3,7 +3,22 @@
 Every technology is a frozen dataclass with ``respond`` (quantity -> signal) and ``invert``
 (signal -> quantity), following the `Transducer` protocol, and delegates to pure functions
 on arrays in SI units that are public too. The class attributes ``quantity``,
-``quantity_unit`` and ``signal_unit`` say what each one senses.
+``quantity_unit`` and ``signal_unit`` say what each one senses:
+
+===========================  ==============================================  ================
+transducer                   senses (``respond`` input)                      signal
+===========================  ==============================================  ================
+ResistiveTransducer          ``pressure`` on the cell [Pa]                   V_o [V]
+CapacitiveTransducer         ``strain`` eps_z of the dielectric [-]          abs(V_d) [V]
+PiezoelectricTransducer      ``stress`` series, tension positive [Pa]        V_o [V]
+ReflectiveOpticalTransducer  membrane ``displacement`` towards fibers [m]    power [W]
+FtirTransducer               contact ``pressure`` image [Pa]                 frame [DN]
+MicrobendTransducer          ``pressure`` per fiber crossing [Pa]            power [W]
+PhotoelasticTransducer       ``stress_difference`` sigma_1 - sigma_2 [Pa]    intensity [W/m^2]
+===========================  ==============================================  ================
+
+Strain and stress are positive in tension, as in `taxel.mechanics`; the piezoelectric
+film is the only one that needs a ``time_step`` and sees changes only.
 
 Common interface
 ----------------
@@ -49,6 +64,10 @@ Non-idealities (each the identity when switched off; randomness only through ``r
 add_noise, adc_codes, adc_values, quantize, draw_gain_offset, GainOffset,
 draw_faults, TaxelFaults, neighbour_crosstalk,
 play_hysteresis, first_order_lag, creep, add_drift, temperature_dependence
+
+A physically ordered chain for one taxel signal is: transducer ``respond`` -> creep and
+hysteresis (they act on the mechanics) -> temperature dependence -> gain/offset spread ->
+neighbour crosstalk -> drift -> noise -> faults -> ADC.
 """
 
 from taxel.transducers._camera import camera_image, glass_scratches
