@@ -28,6 +28,7 @@ from taxel._validation import as_finite_array, check_choice, check_positive
 __all__ = ["ResistiveScanInversion", "invert_resistive_scan", "scan_resistive_matrix"]
 
 _MODES = ("floating", "grounded")
+_MAX_LOG_STEP = 3.0  # at most a factor e^3 per Newton step in any conductance
 
 
 def _laplacian(conductance: np.ndarray) -> np.ndarray:
@@ -227,7 +228,9 @@ def invert_resistive_scan(
     driving-point conductance); for grounded lines the adjoint form
     :math:`-g_{sw}^2 \Delta W_{kl,j} \Delta W_{kl,i}`. A backtracking line search keeps
     every step a decrease of the residual. Cost: one dense solve of size rows * cols per
-    step, so this is for arrays up to a few hundred cells.
+    step, so this is for arrays up to a few hundred cells. Noisy scans may have no exact
+    positive solution (a cell would need a negative conductance); the iteration then ends
+    unconverged with the closest network it found, and `residual` says how far off it is.
 
     Examples
     --------
@@ -254,7 +257,7 @@ def invert_resistive_scan(
             f"max {float(np.max(output_voltage)):g} V"
         )
     size = measured.size
-    log_g = np.log(measured)  # the readout is an upper bound-ish start: ghosts only add
+    log_g = np.log(measured)  # start from eq. 25.6 read naively, cell by cell
 
     def misfit(log_conductance: np.ndarray) -> tuple[np.ndarray, Any]:
         apparent, jacobian = _network(np.exp(log_conductance), switch_resistance, unselected)
@@ -270,7 +273,10 @@ def invert_resistive_scan(
         # d(relative_ij)/d(theta_kl) = J[k, l, i, j] G_kl / measured_ij
         jac = jacobian().reshape(size, size).T * np.exp(log_g).ravel()[None, :]
         jac /= measured.ravel()[:, None]
-        step = np.linalg.solve(jac, -relative.ravel()).reshape(measured.shape)
+        # lstsq rather than solve: with noisy data a cell may be driven towards zero
+        # conductance, where the Jacobian loses rank; the step is then the least-norm one.
+        step = np.linalg.lstsq(jac, -relative.ravel(), rcond=None)[0].reshape(measured.shape)
+        step = np.clip(step, -_MAX_LOG_STEP, _MAX_LOG_STEP)
         length = 1.0
         while True:
             trial = log_g + length * step
