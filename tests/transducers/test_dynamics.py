@@ -49,7 +49,7 @@ def test_first_order_lag_is_exact_for_a_ramp():
     y = first_order_lag(rate * elapsed, dt, time_constant=tau)
     exact = rate * (elapsed - tau * (1 - np.exp(-elapsed / tau)))
     assert np.allclose(y, exact, rtol=1e-12, atol=1e-15)
-    settled = first_order_lag(np.full(5, 3.0), dt, time_constant=tau, initial=3.0)
+    settled = first_order_lag(np.full(5, 3.0), dt, time_constant=tau, initial_value=3.0)
     assert np.allclose(settled, 3.0, rtol=1e-15)
 
 

@@ -37,11 +37,11 @@ def test_flamant_principal_stress_difference():
 
 def test_stress_optic_law_double_pass():
     delta = photoelastic_retardation(
-        1e5, thickness=2e-3, stress_optic_coefficient=3e-10, wavelength=550e-9
+        1e5, layer_thickness=2e-3, stress_optic_coefficient=3e-10, wavelength=550e-9
     )
     assert delta == pytest.approx(2 * 2 * np.pi * 2e-3 * 3e-10 * 1e5 / 550e-9, rel=1e-14)
     single = photoelastic_retardation(
-        1e5, thickness=2e-3, stress_optic_coefficient=3e-10, wavelength=550e-9, passes=1
+        1e5, layer_thickness=2e-3, stress_optic_coefficient=3e-10, wavelength=550e-9, passes=1
     )
     assert delta == pytest.approx(2 * single, rel=1e-15)
     assert LAYER.fringe_stress == pytest.approx(550e-9 / (2 * 2e-3 * 3e-10), rel=1e-14)
@@ -121,7 +121,7 @@ def test_errors_name_the_parameter():
         polariscope_intensity(1.0, field="bright")
     with pytest.raises(ValueError, match="`unit_retardation` must have the shape of intensity"):
         fit_load_scale(np.ones(3), np.ones(4), max_load=1.0)
-    with pytest.raises(ValueError, match="`thickness` must be > 0, got 0"):
-        PhotoelasticTransducer(thickness=0.0)
+    with pytest.raises(ValueError, match="`layer_thickness` must be > 0, got 0"):
+        PhotoelasticTransducer(layer_thickness=0.0)
     with pytest.raises(ValueError, match="`passes` must be a positive integer, got 0"):
         PhotoelasticTransducer(passes=0)

@@ -25,7 +25,7 @@ def test_eqs_25_14_to_25_16_agree():
     stress = np.array([-2e4, -1e3, 5e3])
     charge = piezoelectric_charge(stress, area=2e-6)
     assert np.allclose(charge, -33e-12 * 2e-6 * stress, rtol=1e-15)
-    voltage = piezoelectric_voltage(stress, thickness=28e-6)
+    voltage = piezoelectric_voltage(stress, film_thickness=28e-6)
     capacitance = 12.0 * VACUUM_PERMITTIVITY * 2e-6 / 28e-6  # eq. 25.15
     assert np.allclose(voltage, charge / capacitance, rtol=1e-12)
 

@@ -1,7 +1,7 @@
 """Time-dependent non-idealities: hysteresis, first-order lag, creep, drift, temperature.
 
 Time runs along the last axis; every function is the identity when its strength is zero.
-The state before the first sample is stated by an ``initial`` argument (0 by default: a
+The state before the first sample is stated by an ``initial_value`` argument (0 by default: a
 relaxed, unloaded taxel), never guessed.
 """
 
@@ -33,7 +33,7 @@ def _series(name: str, value: Any) -> np.ndarray:
 
 
 def play_hysteresis(
-    signal: Any, *, loop_width: float = 0.0, n_operators: int = 1, initial: float = 0.0
+    signal: Any, *, loop_width: float = 0.0, n_operators: int = 1, initial_value: float = 0.0
 ) -> np.ndarray:
     r"""Rate-independent hysteresis: a play operator, or a Prandtl-Ishlinskii sum of them.
 
@@ -49,7 +49,7 @@ def play_hysteresis(
         1 gives the single play (backlash) operator, with sharp corners at reversals; more
         give a Prandtl-Ishlinskii operator of plays with widths 2 w i / (n + 1),
         i = 1..n, equal weights, whose loops have rounded corners and the same major width.
-    initial : float, default 0.0
+    initial_value : float, default 0.0
         Input and output before the first sample.
 
     Returns
@@ -68,7 +68,7 @@ def play_hysteresis(
     loop_width = check_positive("loop_width", loop_width, allow_zero=True)
     if isinstance(n_operators, bool) or int(n_operators) != n_operators or n_operators < 1:
         raise ValueError(f"`n_operators` must be a positive integer, got {n_operators!r}")
-    initial = check_finite("initial", initial)
+    initial_value = check_finite("initial_value", initial_value)
     if loop_width == 0:
         return x.copy()
     count = int(n_operators)
@@ -77,7 +77,7 @@ def play_hysteresis(
         if count > 1
         else np.array([loop_width / 2])
     )
-    state = np.full((count, *x.shape[:-1]), initial)
+    state = np.full((count, *x.shape[:-1]), initial_value)
     radii = radii.reshape((count,) + (1,) * (x.ndim - 1))
     out = np.empty_like(x)
     for k in range(x.shape[-1]):
@@ -87,7 +87,7 @@ def play_hysteresis(
 
 
 def first_order_lag(
-    signal: Any, time_step: float, *, time_constant: float, initial: float = 0.0
+    signal: Any, time_step: float, *, time_constant: float, initial_value: float = 0.0
 ) -> np.ndarray:
     r"""A first-order low-pass, tau dy/dt + y = x, exact for piecewise-linear input.
 
@@ -99,7 +99,7 @@ def first_order_lag(
         Sampling interval [s], > 0.
     time_constant : float
         tau [s], >= 0; 0 returns the input.
-    initial : float, default 0.0
+    initial_value : float, default 0.0
         x and y before the first sample (settled).
 
     Returns
@@ -117,16 +117,16 @@ def first_order_lag(
     x = _series("signal", signal)
     time_step = check_positive("time_step", time_step)
     time_constant = check_positive("time_constant", time_constant, allow_zero=True)
-    initial = check_finite("initial", initial)
+    initial_value = check_finite("initial_value", initial_value)
     if time_constant == 0:
         return x.copy()
     decay = math.exp(-time_step / time_constant)
     gain = -math.expm1(-time_step / time_constant) * time_constant / time_step
-    before = np.full((*x.shape[:-1], 1), initial)
+    before = np.full((*x.shape[:-1], 1), initial_value)
     extended = np.concatenate([before, x], axis=-1)
-    # lfilter's state ahead of sample n is b1 x[n-1] + a y[n-1]; settled at `initial` it is
-    # (g - a + a) initial, which makes the prepended sample come out as `initial` too.
-    state = np.full((*x.shape[:-1], 1), gain * initial)
+    # lfilter's state ahead of sample n is b1 x[n-1] + a y[n-1]; settled at `initial_value` it is
+    # (g - a + a) initial_value, which makes the prepended sample come out as `initial_value` too.
+    state = np.full((*x.shape[:-1], 1), gain * initial_value)
     out, _ = sps.lfilter([1.0 - gain, gain - decay], [1.0, -decay], extended, axis=-1, zi=state)
     return out[..., 1:]
 
@@ -137,7 +137,7 @@ def creep(
     *,
     fraction: float = 0.0,
     time_constant: float = 1.0,
-    initial: float = 0.0,
+    initial_value: float = 0.0,
 ) -> np.ndarray:
     r"""Creep of a viscoelastic cover: a held load reads more and more, up to (1 + f) times.
 
@@ -152,7 +152,7 @@ def creep(
         [-], >= 0 (a few percent to tens of percent for elastomers).
     time_constant : float, default 1.0
         tau of the creep [s], > 0.
-    initial : float, default 0.0
+    initial_value : float, default 0.0
         Signal before the first sample, settled.
 
     Returns
@@ -173,7 +173,7 @@ def creep(
     time_constant = check_positive("time_constant", time_constant)
     if fraction == 0:
         return x.copy()
-    lag = first_order_lag(x, time_step, time_constant=time_constant, initial=initial)
+    lag = first_order_lag(x, time_step, time_constant=time_constant, initial_value=initial_value)
     return x + fraction * lag
 
 

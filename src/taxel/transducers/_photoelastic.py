@@ -65,7 +65,7 @@ def principal_stress_difference(stress_a: Any, stress_b: Any, shear_stress: Any)
 def photoelastic_retardation(
     stress_difference: Any,
     *,
-    thickness: float,
+    layer_thickness: float,
     stress_optic_coefficient: float,
     wavelength: float,
     passes: int = 2,
@@ -76,7 +76,7 @@ def photoelastic_retardation(
     ----------
     stress_difference : array_like
         sigma_1 - sigma_2 in the plane normal to the light [Pa], >= 0.
-    thickness : float
+    layer_thickness : float
         Thickness t of the photoelastic layer [m], > 0.
     stress_optic_coefficient : float
         C [1/Pa], > 0 (1 brewster = 1e-12 /Pa; polycarbonate is about 7.8e-11 /Pa).
@@ -93,7 +93,7 @@ def photoelastic_retardation(
 
     Examples
     --------
-    >>> d = photoelastic_retardation(1e6, thickness=2e-3, stress_optic_coefficient=7.8e-11,
+    >>> d = photoelastic_retardation(1e6, layer_thickness=2e-3, stress_optic_coefficient=7.8e-11,
     ...                              wavelength=550e-9)
     >>> round(float(d / (2 * np.pi)), 4)  # fringe order at 1 MPa
     0.5673
@@ -101,12 +101,12 @@ def photoelastic_retardation(
     difference = as_finite_array("stress_difference", stress_difference)
     if np.any(difference < 0):
         raise ValueError(f"`stress_difference` must be >= 0, got {float(np.min(difference)):g}")
-    thickness = check_positive("thickness", thickness)
+    layer_thickness = check_positive("layer_thickness", layer_thickness)
     coefficient = check_positive("stress_optic_coefficient", stress_optic_coefficient)
     wavelength = check_positive("wavelength", wavelength)
     if int(passes) != passes or passes < 1:
         raise ValueError(f"`passes` must be a positive integer, got {passes!r}")
-    return int(passes) * 2.0 * np.pi * thickness * coefficient * difference / wavelength
+    return int(passes) * 2.0 * np.pi * layer_thickness * coefficient * difference / wavelength
 
 
 def polariscope_intensity(
@@ -321,7 +321,7 @@ class PhotoelasticTransducer:
 
     Parameters
     ----------
-    thickness : float, default 2e-3
+    layer_thickness : float, default 2e-3
         t [m].
     stress_optic_coefficient : float, default 7.8e-11
         C [1/Pa] (polycarbonate; soft urethanes are far more sensitive).
@@ -348,7 +348,7 @@ class PhotoelasticTransducer:
     quantity_unit: ClassVar[str] = "Pa"
     signal_unit: ClassVar[str] = "W/m^2"
 
-    thickness: float = 2e-3
+    layer_thickness: float = 2e-3
     stress_optic_coefficient: float = 7.8e-11
     wavelength: float = 550e-9
     field: str = "dark"
@@ -364,7 +364,7 @@ class PhotoelasticTransducer:
 
     def _optics(self) -> dict[str, Any]:
         return {
-            "thickness": self.thickness,
+            "layer_thickness": self.layer_thickness,
             "stress_optic_coefficient": self.stress_optic_coefficient,
             "wavelength": self.wavelength,
             "passes": self.passes,
@@ -373,7 +373,9 @@ class PhotoelasticTransducer:
     @property
     def fringe_stress(self) -> float:
         """Stress difference per fringe order, lambda / (passes t C) [Pa]."""
-        return self.wavelength / (self.passes * self.thickness * self.stress_optic_coefficient)
+        return self.wavelength / (
+            self.passes * self.layer_thickness * self.stress_optic_coefficient
+        )
 
     def respond(self, stress_difference: Any, /) -> np.ndarray:
         """Intensity [W/m^2] for a field of sigma_1 - sigma_2 [Pa]."""

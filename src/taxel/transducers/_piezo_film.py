@@ -53,7 +53,7 @@ def piezoelectric_charge(stress: Any, *, area: float, d33: float = PVDF_D33) -> 
 def piezoelectric_voltage(
     stress: Any,
     *,
-    thickness: float,
+    film_thickness: float,
     d33: float = PVDF_D33,
     relative_permittivity: float = PVDF_RELATIVE_PERMITTIVITY,
 ) -> np.ndarray:
@@ -63,8 +63,8 @@ def piezoelectric_voltage(
     ----------
     stress : array_like
         Normal stress sigma [Pa], positive in tension.
-    thickness : float
-        Film thickness h [m], > 0.
+    film_thickness : float
+        Thickness h of the film [m], > 0.
     d33 : float, default PVDF_D33
         [C/N].
     relative_permittivity : float, default PVDF_RELATIVE_PERMITTIVITY
@@ -77,14 +77,14 @@ def piezoelectric_voltage(
 
     Examples
     --------
-    >>> float(piezoelectric_voltage(-1e4, thickness=28e-6))  # 28 um film, 10 kPa
+    >>> float(piezoelectric_voltage(-1e4, film_thickness=28e-6))  # 28 um film, 10 kPa
     0.0869...
     """
     stress = as_finite_array("stress", stress)
-    thickness = check_positive("thickness", thickness)
+    film_thickness = check_positive("film_thickness", film_thickness)
     relative_permittivity = check_positive("relative_permittivity", relative_permittivity)
     permittivity = relative_permittivity * VACUUM_PERMITTIVITY
-    return _check_d33(d33) * thickness * stress / permittivity
+    return _check_d33(d33) * film_thickness * stress / permittivity
 
 
 def _check_d33(d33: float) -> float:

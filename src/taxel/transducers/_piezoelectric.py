@@ -53,8 +53,8 @@ class PiezoelectricTransducer:
     ----------
     area : float, default 1e-6
         Electrode area A [m^2].
-    thickness : float, default 28e-6
-        Film thickness h [m] (28 um is a common PVDF film).
+    film_thickness : float, default 28e-6
+        Thickness h of the film [m] (28 um is a common PVDF film).
     d33 : float, default PVDF_D33
         [C/N].
     relative_permittivity : float, default PVDF_RELATIVE_PERMITTIVITY
@@ -85,7 +85,7 @@ class PiezoelectricTransducer:
     signal_unit: ClassVar[str] = "V"
 
     area: float = 1e-6
-    thickness: float = 28e-6
+    film_thickness: float = 28e-6
     d33: float = PVDF_D33
     relative_permittivity: float = PVDF_RELATIVE_PERMITTIVITY
     amplifier: str = "charge"
@@ -94,7 +94,7 @@ class PiezoelectricTransducer:
     reset_interval: int | None = None
 
     def __post_init__(self) -> None:
-        for name in ("area", "thickness", "relative_permittivity", "feedback_capacitance"):
+        for name in ("area", "film_thickness", "relative_permittivity", "feedback_capacitance"):
             object.__setattr__(self, name, check_positive(name, getattr(self, name)))
         object.__setattr__(self, "feedback_resistance", _check_leak(self.feedback_resistance))
         object.__setattr__(self, "d33", _check_d33(self.d33))
@@ -112,7 +112,7 @@ class PiezoelectricTransducer:
         """V = d33 h sigma / epsilon across the bare film [V] (eq. 25.14)."""
         return piezoelectric_voltage(
             stress,
-            thickness=self.thickness,
+            film_thickness=self.film_thickness,
             d33=self.d33,
             relative_permittivity=self.relative_permittivity,
         )
