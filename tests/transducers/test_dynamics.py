@@ -55,7 +55,7 @@ def test_first_order_lag_is_exact_for_a_ramp():
 
 def test_creep_under_a_held_load():
     dt, tau = 0.01, 0.5
-    y = creep(np.ones(600), dt, fraction=0.15, time_constant=tau)
+    y = creep(np.ones(600), dt, creep_fraction=0.15, time_constant=tau)
     assert y[-1] == pytest.approx(1.15, rel=1e-5)
     slope = np.polyfit(np.arange(1, 600) * dt, np.log(1.15 - y[1:]), 1)[0]
     assert -1 / slope == pytest.approx(tau, rel=1e-9)
@@ -90,7 +90,7 @@ def test_errors_name_the_parameter():
     with pytest.raises(ValueError, match="`n_operators` must be a positive integer, got 0"):
         play_hysteresis([0.0, 1.0], loop_width=1.0, n_operators=0)
     with pytest.raises(ValueError, match="`time_constant` must be > 0, got 0"):
-        creep([0.0, 1.0], 0.1, fraction=0.1, time_constant=0.0)
+        creep([0.0, 1.0], 0.1, creep_fraction=0.1, time_constant=0.0)
     with pytest.raises(ValueError, match="`signal` must be a time series"):
         first_order_lag(1.0, 0.1, time_constant=1.0)
     with pytest.raises(ValueError, match="`temperature` must be > 0 K, got -5"):

@@ -127,5 +127,5 @@ def test_protocol_and_errors():
         critical_angle(waveguide_index=1.3, surrounding_index=1.41)
     with pytest.raises(TypeError, match="`rng` must be a numpy.random.Generator or an int"):
         glass_scratches((4, 4), rng=0.5)
-    with pytest.raises(ValueError, match="`fraction` must lie in"):
+    with pytest.raises(ValueError, match="`contact_fraction` must lie in"):
         pressure_from_contact_fraction(1.5, contact_modulus=1e6, rms_slope=0.2)

@@ -135,7 +135,7 @@ def creep(
     signal: Any,
     time_step: float,
     *,
-    fraction: float = 0.0,
+    creep_fraction: float = 0.0,
     time_constant: float = 1.0,
     initial_value: float = 0.0,
 ) -> np.ndarray:
@@ -147,7 +147,7 @@ def creep(
         The instantaneous (elastic) response [signal unit].
     time_step : float
         Sampling interval [s], > 0.
-    fraction : float, default 0.0
+    creep_fraction : float, default 0.0
         f, the creep that builds up under a held load as a fraction of the elastic part
         [-], >= 0 (a few percent to tens of percent for elastomers).
     time_constant : float, default 1.0
@@ -164,17 +164,17 @@ def creep(
 
     Examples
     --------
-    >>> y = creep(np.ones(5), 1.0, fraction=0.1, time_constant=2.0)
+    >>> y = creep(np.ones(5), 1.0, creep_fraction=0.1, time_constant=2.0)
     >>> np.round(y, 4).tolist()
     [1.0213, 1.0523, 1.0711, 1.0824, 1.0893]
     """
     x = _series("signal", signal)
-    fraction = check_positive("fraction", fraction, allow_zero=True)
+    creep_fraction = check_positive("creep_fraction", creep_fraction, allow_zero=True)
     time_constant = check_positive("time_constant", time_constant)
-    if fraction == 0:
+    if creep_fraction == 0:
         return x.copy()
     lag = first_order_lag(x, time_step, time_constant=time_constant, initial_value=initial_value)
-    return x + fraction * lag
+    return x + creep_fraction * lag
 
 
 def add_drift(

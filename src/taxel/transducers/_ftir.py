@@ -154,13 +154,13 @@ def contact_area_fraction(
 
 
 def pressure_from_contact_fraction(
-    fraction: Any, *, contact_modulus: float, rms_slope: float
+    contact_fraction: Any, *, contact_modulus: float, rms_slope: float
 ) -> np.ndarray:
     """Pressure from the real contact area fraction, the inverse of `contact_area_fraction` [Pa].
 
     Parameters
     ----------
-    fraction : array_like
+    contact_fraction : array_like
         A / A_0 in [0, 1); 1 (full contact) maps to inf.
     contact_modulus, rms_slope : float
         As in `contact_area_fraction`.
@@ -175,12 +175,12 @@ def pressure_from_contact_fraction(
     >>> float(pressure_from_contact_fraction(0.5, contact_modulus=1e6, rms_slope=0.2))
     67448.97...
     """
-    fraction = as_finite_array("fraction", fraction)
-    if np.any((fraction < 0) | (fraction > 1)):
-        raise ValueError("`fraction` must lie in [0, 1] everywhere")
+    contact_fraction = as_finite_array("contact_fraction", contact_fraction)
+    if np.any((contact_fraction < 0) | (contact_fraction > 1)):
+        raise ValueError("`contact_fraction` must lie in [0, 1] everywhere")
     contact_modulus = check_positive("contact_modulus", contact_modulus)
     rms_slope = check_positive("rms_slope", rms_slope)
-    return contact_modulus * rms_slope * special.erfinv(fraction) / math.sqrt(2.0)
+    return contact_modulus * rms_slope * special.erfinv(contact_fraction) / math.sqrt(2.0)
 
 
 _SIXTY_DEGREES = math.pi / 3
