@@ -34,6 +34,7 @@ __all__ = [
 DEFAULT_BAND_EDGES = 10.0 * 2.0 ** (np.arange(8) / 2.0)
 
 _MIN_STEPS = 16
+_SILENT_LEVEL = -120.0  # dB: rounding noise of float64, far below any sensor's noise
 
 
 @dataclass(frozen=True)
@@ -169,9 +170,10 @@ def spatial_power_spectrum(
 
     Notes
     -----
-    Welch's estimate of the temporal PSD S_t(f) [reading^2/Hz] (Hann window, 50 % overlap,
-    a straight line removed from each segment, which removes the static contact level and
-    slow drift) is mapped onto spatial frequency by
+    Welch's estimate of the temporal PSD S_t(f) [reading^2/Hz] (Hann window, segments
+    spread evenly over the whole record with at least 50 % overlap, a straight line removed
+    from each segment, which removes the static contact level and slow drift) is mapped
+    onto spatial frequency by
 
     .. math:: k = f / |v|, \qquad S_x(k) = |v| \, S_t(k |v|),
 
@@ -199,10 +201,27 @@ def spatial_power_spectrum(
     if n_steps < _MIN_STEPS:
         raise ValueError(f"`readings` must have at least {_MIN_STEPS} steps, got {n_steps}")
     samples = int(np.clip(round(segment_length * sampling_rate / speed), 8, n_steps))
-    frequency, psd = signal.welch(
-        readings, fs=sampling_rate, window="hann", nperseg=samples, detrend="linear", axis=0
-    )
+    frequency, psd = _welch(readings, sampling_rate, samples)
     return frequency / speed, psd * speed
+
+
+def _welch(readings: np.ndarray, sampling_rate: float, samples: int) -> tuple[Any, Any]:
+    """Welch's one-sided PSD with segments spread evenly from the first to the last step.
+
+    scipy.signal.welch drops the steps after its last whole segment, which loses up to half
+    a segment and makes the estimate depend on the direction of time; spreading the
+    segments evenly (overlap >= 50 %) uses every step, and the set of segments maps onto
+    itself under time reversal.
+    """
+    n_steps = readings.shape[0]
+    count = 1 if samples >= n_steps else int(np.ceil(2 * (n_steps - samples) / samples)) + 1
+    starts = np.round(np.linspace(0, n_steps - samples, count)).astype(int)
+    window = signal.windows.hann(samples, sym=True)  # symmetric: reversal-invariant
+    segments = np.stack([readings[start : start + samples] for start in starts])
+    segments = signal.detrend(segments, axis=1, type="linear") * window[None, :, None]
+    spectrum = np.abs(np.fft.rfft(segments, axis=1)) ** 2 / (sampling_rate * np.sum(window**2))
+    spectrum[:, 1 : (samples + 1) // 2] *= 2.0  # one-sided: fold the negative frequencies
+    return np.fft.rfftfreq(samples, 1.0 / sampling_rate), spectrum.mean(axis=0)
 
 
 def band_power(spatial_frequency: Any, spatial_psd: Any, band_edges: Any) -> np.ndarray:
@@ -372,7 +391,7 @@ def texture_features(signature: TextureSignature) -> np.ndarray:
     ------
     ValueError
         When the mean reading is not positive (the levels are relative to it) or a band
-        holds no power.
+        holds no measurable power (below -120 dB).
 
     Examples
     --------
@@ -391,6 +410,9 @@ def texture_features(signature: TextureSignature) -> np.ndarray:
         )
     per_taxel = signature.band_level.T.ravel()
     features = np.concatenate([per_taxel, signature.pooled_band_level])
-    if np.any(np.isneginf(features)):
-        raise ValueError("a band holds no power (a constant reading?); cannot take its level")
+    if np.any(features < _SILENT_LEVEL):
+        raise ValueError(
+            f"a band holds no measurable power (below {_SILENT_LEVEL:g} dB re the mean "
+            "reading; a constant reading?)"
+        )
     return features
