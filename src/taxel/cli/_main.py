@@ -7,6 +7,10 @@ import sys
 from collections.abc import Callable, Sequence
 
 import taxel
+from taxel.cli import _texture
+
+# each module adds its subcommand with register(commands)
+_REGISTERED = (_texture,)
 
 __all__ = ["CommandLineError", "main"]
 
@@ -33,7 +37,8 @@ def _build_parser() -> _Parser:
     )
     parser.add_argument("--version", action="version", version=f"taxel {taxel.__version__}")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    del commands  # subcommands are registered here as the layers land
+    for module in _REGISTERED:
+        module.register(commands)
     return parser
 
 
