@@ -122,7 +122,9 @@ class TextureClassifier:
         """A JSON-ready dictionary (NaN written as null)."""
 
         def plain(array: np.ndarray) -> Any:
-            return np.where(np.isnan(array), None, array).tolist()
+            values = array.astype(object)
+            values[np.isnan(array)] = None
+            return values.tolist()
 
         return {
             "format": _FORMAT,
