@@ -10,6 +10,7 @@ Texture classification (k nearest neighbours, JSON models)
 fit_texture_classifier, TextureClassifier, cross_validate_texture, CrossValidation
 """
 
+from taxel.active._spatial_spectrum import band_power, spatial_power_spectrum
 from taxel.active._texture_classifier import (
     CrossValidation,
     TextureClassifier,
@@ -19,8 +20,6 @@ from taxel.active._texture_classifier import (
 from taxel.active._texture_signature import (
     DEFAULT_BAND_EDGES,
     TextureSignature,
-    band_power,
-    spatial_power_spectrum,
     texture_features,
     texture_signature,
 )

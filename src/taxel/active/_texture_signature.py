@@ -16,24 +16,23 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy import signal
 
-from taxel._validation import as_finite_array, check_finite, check_positive, check_range
+from taxel._validation import as_finite_array, check_range
+from taxel.active._spatial_spectrum import (
+    MIN_STEPS,
+    as_readings,
+    band_power,
+    band_weights,
+    check_band_edges,
+    spatial_power_spectrum,
+)
 
-__all__ = [
-    "DEFAULT_BAND_EDGES",
-    "TextureSignature",
-    "band_power",
-    "spatial_power_spectrum",
-    "texture_features",
-    "texture_signature",
-]
+__all__ = ["DEFAULT_BAND_EDGES", "TextureSignature", "texture_features", "texture_signature"]
 
 #: Half-octave bands from 10 to 113 cycles/m (spatial periods of 100 mm down to 8.8 mm):
 #: the band a 35 Hz capacitive finger resolves at sliding speeds up to 150 mm/s.
 DEFAULT_BAND_EDGES = 10.0 * 2.0 ** (np.arange(8) / 2.0)
 
-_MIN_STEPS = 16
 _SILENT_LEVEL = -120.0  # dB: rounding noise of float64, far below any sensor's noise
 
 
@@ -102,14 +101,14 @@ class TextureSignature:
         sqrt(integral of (2 pi k)^2 S(k) dk) over the bands: how steeply the reading varies
         per metre of travel, a speed-invariant counterpart of the temporal derivative.
         """
-        weight = _band_weights(self.spatial_frequency, self.band_edges).sum(axis=0)
+        weight = band_weights(self.spatial_frequency, self.band_edges).sum(axis=0)
         slope = (2.0 * np.pi * self.spatial_frequency) ** 2 * weight
         return np.sqrt(slope @ self.spatial_psd)
 
     @property
     def centroid(self) -> float:
         """Spectral centroid of the pooled PSD within the bands [cycles/m]."""
-        weight = _band_weights(self.spatial_frequency, self.band_edges).sum(axis=0)
+        weight = band_weights(self.spatial_frequency, self.band_edges).sum(axis=0)
         power = weight * self.pooled_psd
         return float(power @ self.spatial_frequency / power.sum())
 
@@ -119,164 +118,6 @@ def _decibels(power: np.ndarray, reference: float) -> np.ndarray:
         return np.full_like(power, np.nan)
     with np.errstate(divide="ignore"):
         return 10.0 * np.log10(power / reference**2)
-
-
-def _band_weights(spatial_frequency: np.ndarray, edges: np.ndarray) -> np.ndarray:
-    """(n_bands, n_frequencies) length of each frequency bin that lies inside each band."""
-    step = spatial_frequency[1] - spatial_frequency[0]
-    left = np.maximum(spatial_frequency - step / 2.0, 0.0)
-    right = spatial_frequency + step / 2.0
-    low, high = edges[:-1, None], edges[1:, None]
-    return np.clip(np.minimum(right, high) - np.maximum(left, low), 0.0, None)
-
-
-def _as_readings(readings: Any) -> np.ndarray:
-    array = as_finite_array("readings", readings)
-    if array.ndim == 1:
-        return array[:, None]
-    if array.ndim < 1 or array.shape[0] < 1:
-        raise ValueError(f"`readings` must be (n_steps, ...), got shape {array.shape}")
-    return array.reshape(array.shape[0], -1)
-
-
-def spatial_power_spectrum(
-    readings: Any,
-    sampling_rate: float,
-    sliding_velocity: float,
-    *,
-    segment_length: float = 0.2,
-) -> tuple[np.ndarray, np.ndarray]:
-    r"""Power spectral density of each taxel over spatial frequency.
-
-    Parameters
-    ----------
-    readings : array_like
-        (n_steps,) or (n_steps, n_taxels) readings at uniform time steps (extra trailing
-        axes are flattened into taxels).
-    sampling_rate : float
-        fs [Hz], > 0.
-    sliding_velocity : float
-        v [m/s], nonzero; the sign (direction) does not matter.
-    segment_length : float
-        Travel per Welch segment [m], > 0; sets the resolution 1 / `segment_length`
-        [cycles/m] whatever the speed.
-
-    Returns
-    -------
-    spatial_frequency : numpy.ndarray
-        (n_frequencies,) k [cycles/m].
-    spatial_psd : numpy.ndarray
-        (n_frequencies, n_taxels) S_x(k) [reading^2 m].
-
-    Notes
-    -----
-    Welch's estimate of the temporal PSD S_t(f) [reading^2/Hz] (Hann window, segments
-    spread evenly over the whole record with at least 50 % overlap, a straight line removed
-    from each segment, which removes the static contact level and slow drift) is mapped
-    onto spatial frequency by
-
-    .. math:: k = f / |v|, \qquad S_x(k) = |v| \, S_t(k |v|),
-
-    which keeps the variance: the integral of S_x over k equals that of S_t over f. A
-    segment spans `segment_length` of travel, round(segment_length fs / |v|) samples
-    (at least 8, at most the whole record).
-
-    Examples
-    --------
-    A grating of period 25 mm (40 cycles/m) slid at 20 mm/s, sampled at 50 Hz:
-
-    >>> import numpy as np
-    >>> t = np.arange(1500) / 50.0
-    >>> k, psd = spatial_power_spectrum(np.sin(2 * np.pi * 40 * 0.02 * t), 50.0, 0.02)
-    >>> float(k[np.argmax(psd[:, 0])]), float(k[1])
-    (40.0, 5.0)
-    """
-    readings = _as_readings(readings)
-    sampling_rate = check_positive("sampling_rate", sampling_rate)
-    speed = abs(check_finite("sliding_velocity", sliding_velocity))
-    if speed == 0:
-        raise ValueError("`sliding_velocity` must be nonzero, got 0")
-    segment_length = check_positive("segment_length", segment_length)
-    n_steps = readings.shape[0]
-    if n_steps < _MIN_STEPS:
-        raise ValueError(f"`readings` must have at least {_MIN_STEPS} steps, got {n_steps}")
-    samples = int(np.clip(round(segment_length * sampling_rate / speed), 8, n_steps))
-    frequency, psd = _welch(readings, sampling_rate, samples)
-    return frequency / speed, psd * speed
-
-
-def _welch(readings: np.ndarray, sampling_rate: float, samples: int) -> tuple[Any, Any]:
-    """Welch's one-sided PSD with segments spread evenly from the first to the last step.
-
-    scipy.signal.welch drops the steps after its last whole segment, which loses up to half
-    a segment and makes the estimate depend on the direction of time; spreading the
-    segments evenly (overlap >= 50 %) uses every step, and the set of segments maps onto
-    itself under time reversal.
-    """
-    n_steps = readings.shape[0]
-    count = 1 if samples >= n_steps else int(np.ceil(2 * (n_steps - samples) / samples)) + 1
-    starts = np.round(np.linspace(0, n_steps - samples, count)).astype(int)
-    window = signal.windows.hann(samples, sym=True)  # symmetric: reversal-invariant
-    segments = np.stack([readings[start : start + samples] for start in starts])
-    segments = signal.detrend(segments, axis=1, type="linear") * window[None, :, None]
-    spectrum = np.abs(np.fft.rfft(segments, axis=1)) ** 2 / (sampling_rate * np.sum(window**2))
-    spectrum[:, 1 : (samples + 1) // 2] *= 2.0  # one-sided: fold the negative frequencies
-    return np.fft.rfftfreq(samples, 1.0 / sampling_rate), spectrum.mean(axis=0)
-
-
-def band_power(spatial_frequency: Any, spatial_psd: Any, band_edges: Any) -> np.ndarray:
-    """Integrate a PSD over bands, splitting frequency bins that straddle a band edge.
-
-    Parameters
-    ----------
-    spatial_frequency : array_like
-        (n_frequencies,) uniformly spaced frequencies from 0 [cycles/m].
-    spatial_psd : array_like
-        (n_frequencies, ...) PSD [reading^2 m].
-    band_edges : array_like
-        (n_bands + 1,) increasing band edges [cycles/m], >= 0.
-
-    Returns
-    -------
-    numpy.ndarray
-        (n_bands, ...) power in each band [reading^2]; NaN for a band reaching above the
-        highest frequency (the Nyquist frequency).
-
-    Notes
-    -----
-    Bin j stands for the interval k_j +- dk / 2 (clipped at 0); the band integral is the sum
-    of S(k_j) times the length of that interval inside the band. Bands narrower than the
-    bin width therefore still get their share, so the same bands can be used at any
-    resolution.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> k = np.arange(11.0)  # 0..10 cycles/m, flat PSD of 2 reading^2 m
-    >>> band_power(k, np.full(11, 2.0), [1.0, 2.5, 4.0, 12.0]).tolist()
-    [3.0, 3.0, nan]
-    """
-    frequency = as_finite_array("spatial_frequency", spatial_frequency, ndim=1)
-    psd = as_finite_array("spatial_psd", spatial_psd)
-    edges = as_finite_array("band_edges", band_edges, ndim=1)
-    if frequency.size < 2 or psd.shape[0] != frequency.size:
-        raise ValueError(
-            f"`spatial_psd` {psd.shape} must be (n_frequencies, ...) with n_frequencies = "
-            f"{frequency.size} >= 2"
-        )
-    _check_edges(edges)
-    weights = _band_weights(frequency, edges)
-    power = np.tensordot(weights, psd, axes=(1, 0))
-    top = frequency[-1] * (1.0 + 1e-9)
-    power[edges[1:] > top] = np.nan
-    return power
-
-
-def _check_edges(edges: np.ndarray) -> None:
-    if edges.size < 2 or np.any(edges < 0) or np.any(np.diff(edges) <= 0):
-        raise ValueError(
-            f"`band_edges` must be at least two increasing values >= 0, got {edges.tolist()}"
-        )
 
 
 def texture_signature(
@@ -336,7 +177,7 @@ def texture_signature(
     >>> np.round(slow.rms, 2), np.round(fast.rms, 2)
     (array([2.83]), array([2.83]))
     """
-    readings = _as_readings(readings)
+    readings = as_readings(readings)
     time = as_finite_array("time", time, ndim=1)
     if time.shape[0] != readings.shape[0]:
         raise ValueError(
@@ -346,13 +187,13 @@ def texture_signature(
         raise ValueError("`time` must be non-decreasing")
     trim_fraction = check_range("trim_fraction", trim_fraction, 0.0, 0.45)
     edges = as_finite_array("band_edges", band_edges, ndim=1)
-    _check_edges(edges)
+    check_band_edges(edges)
     drop = int(round(trim_fraction * time.shape[0]))
     keep = slice(drop, time.shape[0] - drop)
     time, readings = time[keep], readings[keep]
-    if time.shape[0] < _MIN_STEPS:
+    if time.shape[0] < MIN_STEPS:
         raise ValueError(
-            f"`readings` must keep at least {_MIN_STEPS} steps after trimming, got "
+            f"`readings` must keep at least {MIN_STEPS} steps after trimming, got "
             f"{time.shape[0]}"
         )
     duration = time[-1] - time[0]
