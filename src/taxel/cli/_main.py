@@ -3,18 +3,18 @@
 from __future__ import annotations
 
 import argparse
+import importlib
 import sys
 from collections.abc import Callable, Sequence
 
 import taxel
-from taxel.cli import _texture
-
-# each module adds its subcommand with register(commands)
-_REGISTERED = (_texture,)
 
 __all__ = ["CommandLineError", "main"]
 
 EXIT_USAGE = 2
+
+# each subcommand module (taxel/cli/_NAME.py) exposes register(commands)
+_SUBCOMMANDS = ("_demo", "_features", "_texture")
 
 
 class CommandLineError(Exception):
@@ -37,8 +37,8 @@ def _build_parser() -> _Parser:
     )
     parser.add_argument("--version", action="version", version=f"taxel {taxel.__version__}")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    for module in _REGISTERED:
-        module.register(commands)
+    for name in _SUBCOMMANDS:
+        importlib.import_module(f"taxel.cli.{name}").register(commands)
     return parser
 
 

@@ -1,0 +1,163 @@
+"""``taxel features FILE``: the passive features of one tactile image."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = ["register"]
+
+
+def _load_image(path: Path) -> np.ndarray:
+    """Read .npy, .png/.tif (8 or 16 bit) or .csv as a 2-D array (until taxel.io lands)."""
+    if not path.is_file():
+        raise OSError(f"no such file: {path}")
+    suffix = path.suffix.lower()
+    if suffix == ".npy":
+        image = np.load(path, allow_pickle=False)
+    elif suffix == ".csv":
+        try:
+            image = np.loadtxt(path, delimiter=",", ndmin=2)
+        except ValueError as error:
+            raise ValueError(f"{path}: not a numeric CSV table ({error})") from None
+    elif suffix in (".png", ".tif", ".tiff"):
+        import cv2
+
+        image = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
+        if image is None:
+            raise ValueError(f"{path}: not a readable image")
+        if image.ndim == 3:  # a grey frame saved as colour: take the mean of the channels
+            image = image[..., :3].mean(axis=2)
+    else:
+        raise ValueError(f"{path}: unknown file type {suffix!r} (use .npy, .png, .tif or .csv)")
+    return np.asarray(image)
+
+
+def _load_pose(path: Path) -> np.ndarray:
+    """A 4x4 pose from JSON: a nested list, or {"matrix": ...}, or translation + rotation."""
+    from scipy.spatial.transform import Rotation
+
+    from taxel.frames import as_pose, make_pose
+
+    try:
+        data = json.loads(path.read_text())
+    except json.JSONDecodeError as error:
+        raise ValueError(f"{path}: not valid JSON ({error.msg})") from None
+    if isinstance(data, dict) and "matrix" in data:
+        data = data["matrix"]
+    if isinstance(data, list):
+        return as_pose(data, name="pose")
+    if isinstance(data, dict) and "translation" in data:
+        rotation = None
+        if "quaternion" in data:
+            rotation = Rotation.from_quat(data["quaternion"])  # (x, y, z, w)
+        elif "rotvec" in data:
+            rotation = Rotation.from_rotvec(data["rotvec"])
+        return make_pose(rotation, data["translation"])
+    raise ValueError(
+        f"{path}: a pose is a 4x4 list, {{'matrix': 4x4}} or "
+        "{'translation': [x, y, z], 'quaternion': [x, y, z, w] | 'rotvec': [...]}"
+    )
+
+
+def _format(value: Any, scale: float = 1.0, digits: int = 3) -> str:
+    if value is None:
+        return "-"
+    if isinstance(value, list | tuple):
+        return "(" + ", ".join(_format(v, scale, digits) for v in value) + ")"
+    if isinstance(value, float) and not math.isfinite(value):
+        return "-"
+    return f"{value * scale:.{digits}f}"
+
+
+def _table(data: dict[str, Any]) -> str:
+    contact, line, circle = data["contact"], data["line"], data["circle"]
+    rows = [
+        ("contact", "yes" if contact["present"] else "no"),
+        ("contact type", f"{data['contact_type']} ({data['contact_rule']}, "
+         f"confidence {data['contact_confidence']:.2f})"),
+        ("regions", str(len(data["regions"]))),
+        ("centroid [mm]", _format(contact["centroid_m"], 1e3)),
+        ("centroid [taxels]", _format(contact["centroid_index"], 1.0, 2)),
+        ("area [mm^2]", _format(contact["area_m2"], 1e6)),
+        ("total force [N]", _format(contact["total_force_n"])),
+        ("orientation [deg]", _format(contact["orientation_rad"], 180 / math.pi, 1)),
+        ("centroid, base [mm]", _format(contact["centroid_base_m"], 1e3)),
+        ("edges", str(data["n_edges"])),
+        ("edge / corner score", f"{data['edge_score']:.2f} / {data['corner_score']:.2f}"),
+        ("line angle [deg]", _format(line["angle_rad"], 180 / math.pi, 1)),
+        ("line rms [mm]", _format(line["rms_m"], 1e3)),
+        ("circle centre [mm]", _format(circle["center_m"], 1e3)),
+        ("circle radius [mm]", _format(circle["radius_m"], 1e3)),
+        ("circle rms [mm]", _format(circle["rms_m"], 1e3)),
+        ("holes", f"{data['holes']['count']} (seed's diameter test: "
+         f"{'yes' if data['holes']['diameter_test'] else 'no'})"),
+    ]  # fmt: skip
+    for hole in data["holes"]["items"]:
+        rows.append(
+            ("  hole", f"centre {_format(hole['center_m'], 1e3)} mm, "
+             f"radius {_format(hole['radius_m'], 1e3)} mm")
+        )  # fmt: skip
+    rows.append(("slots", str(data["slots"]["count"])))
+    for slot in data["slots"]["items"]:
+        rows.append(
+            ("  slot", f"centre {_format(slot['center_m'], 1e3)} mm, "
+             f"direction {_format(slot['angle_rad'], 180 / math.pi, 1)} deg, "
+             f"width {_format(slot['width_m'], 1e3)} mm, "
+             f"length {_format(slot['length_m'], 1e3)} mm"
+             + (" (runs off the array)" if slot["truncated"] else ""))
+        )  # fmt: skip
+    texture = data["texture"]
+    rows += [
+        ("planarity", _format(data["planarity"], 1.0, 2)),
+        ("normal", _format(data["normal"])),
+        ("texture maxima", str(texture["maxima_count"])),
+        ("texture mean height", _format(texture["mean_height"], 1.0, 2)),
+        ("texture wavelength [mm]", _format(texture["dominant_wavelength_m"], 1e3)),
+    ]
+    width = max(len(name) for name, _ in rows)
+    return "\n".join(f"{name:<{width}}  {value}" for name, value in rows)
+
+
+def _run(arguments: argparse.Namespace) -> int:
+    from taxel.features import extract
+
+    if arguments.pitch is None:
+        raise ValueError("give the taxel pitch with --pitch METRES (sensor presets come later)")
+    image = _load_image(Path(arguments.file))
+    pose = None if arguments.pose is None else _load_pose(Path(arguments.pose))
+    features = extract(image, arguments.pitch, pose=pose, calibrated=arguments.calibrated)
+    data = features.to_dict()
+    if arguments.json:
+        sys.stdout.write(json.dumps(data, indent=2) + "\n")
+    else:
+        sys.stdout.write(_table(data) + "\n")
+    if arguments.figure:
+        from taxel.viz import plot_features
+
+        figure = plot_features(image, features, arguments.pitch)
+        figure.savefig(arguments.figure, dpi=120)
+    return 0
+
+
+def register(commands: Any) -> None:
+    """Add the ``features`` subcommand to the ``taxel`` parser's subcommands."""
+    parser = commands.add_parser(
+        "features",
+        help="passive tactile features of one image (contact, type, holes, slots, texture)",
+        description="Extract the passive tactile features of one image (.npy, .png/.tif of "
+        "8 or 16 bit, .csv) and print them as a table or as JSON.",
+    )
+    parser.add_argument("file", help="the tactile image")
+    parser.add_argument("--pitch", type=float, metavar="METRES", help="taxel pitch [m]")
+    parser.add_argument("--pose", metavar="POSE.json", help="sensor pose T_BS in the base frame")
+    parser.add_argument("--calibrated", action="store_true", help="the image holds pressure [Pa]")
+    parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    parser.add_argument("--figure", metavar="PNG", help="also draw the features to this file")
+    parser.set_defaults(handler=_run)

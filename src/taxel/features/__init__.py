@@ -1,0 +1,75 @@
+"""Passive tactile features of one tactile image (Ellis seed, section 2.1).
+
+Works on any tactile image: raw 8- or 16-bit frames, calibrated readings or pressure maps
+[Pa], of any array geometry (give the taxel pitch [m]). Positions are in the sensor frame
+``S`` of `taxel.frames` (x along columns, y along rows, z out of the sensor), and in the
+robot's base frame given the sensor's pose ``T_BS``.
+
+Everything at once
+------------------
+extract, TactileFeatures, ContactPose
+
+One feature each
+----------------
+find_contact (Contact, ContactRegion), detect_edges (Edges),
+classify_contact (ContactShape, CONTACT_TYPES), detect_holes (HoleReport, Hole),
+detect_slots (SlotReport, Slot), contact_plane (ContactPlane),
+texture_measures (Texture), fit_line (LineFit), fit_circle (CircleFit)
+
+Helpers
+-------
+prepare (Prepared): validation, smoothing, noise, baseline and contact mask shared by all;
+sensor_coordinates: taxel indices to sensor-frame metres; pitch_pair.
+
+Examples
+--------
+>>> import numpy as np
+>>> from taxel.features import extract
+>>> y, x = np.mgrid[:32, :32]
+>>> pen = np.exp(-((x - 20) ** 2 + (y - 10) ** 2) / 4.0)  # a pen tip at row 10, col 20
+>>> features = extract(pen, 1e-3)
+>>> features.contact_type, [round(v, 2) for v in features.contact.centroid_index]
+('point', [10.0, 20.0])
+"""
+
+from taxel.features._contact import Contact, ContactRegion, find_contact
+from taxel.features._edges import Edges, detect_edges
+from taxel.features._extract import ContactPose, TactileFeatures, extract
+from taxel.features._fitting import CircleFit, LineFit, fit_circle, fit_line
+from taxel.features._gaps import Hole, HoleReport, Slot, SlotReport, detect_holes, detect_slots
+from taxel.features._image import Prepared, pitch_pair, prepare, sensor_coordinates
+from taxel.features._shape import CONTACT_TYPES, ContactShape, classify_contact
+from taxel.features._surface import ContactPlane, contact_plane
+from taxel.features._texture import Texture, texture_measures
+
+__all__ = [
+    "CONTACT_TYPES",
+    "CircleFit",
+    "Contact",
+    "ContactPlane",
+    "ContactPose",
+    "ContactRegion",
+    "ContactShape",
+    "Edges",
+    "Hole",
+    "HoleReport",
+    "LineFit",
+    "Prepared",
+    "Slot",
+    "SlotReport",
+    "TactileFeatures",
+    "Texture",
+    "classify_contact",
+    "contact_plane",
+    "detect_edges",
+    "detect_holes",
+    "detect_slots",
+    "extract",
+    "find_contact",
+    "fit_circle",
+    "fit_line",
+    "pitch_pair",
+    "prepare",
+    "sensor_coordinates",
+    "texture_measures",
+]

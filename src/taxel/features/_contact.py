@@ -1,0 +1,237 @@
+"""Contact regions: presence, centroid, area, force, principal axes, orientation."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from taxel.features._image import Prepared, prepare
+
+__all__ = ["Contact", "ContactRegion", "contact_regions", "find_contact"]
+
+
+@dataclass(frozen=True)
+class ContactRegion:
+    """One connected contact region.
+
+    Attributes
+    ----------
+    centroid_index : (float, float)
+        Centre of pressure as (row, col) taxel indices: the centroid weighted by the
+        signal above the baseline.
+    centroid_m : (float, float)
+        The same point (x, y) in the sensor frame [m].
+    area_taxels : int
+        Number of taxels of the region whose unsmoothed value clears the low threshold.
+    area_m2 : float
+        Contact area [m^2].
+    total_force_n : float or None
+        Sum of pressure times taxel area [N] when the image is calibrated, else None.
+    major_axis_m, minor_axis_m : float
+        Full axis lengths of the ellipse with the region's second moments [m]
+        (``4 sqrt(lambda)``, as for a uniform ellipse).
+    orientation_rad : float
+        Angle of the major axis from the sensor's +x towards +y, in (-pi/2, pi/2] [rad].
+    peak : float
+        Largest input value in the region [image units].
+    touches_border : bool
+        Whether the region reaches the edge of the array (it may continue beyond).
+    """
+
+    centroid_index: tuple[float, float]
+    centroid_m: tuple[float, float]
+    area_taxels: int
+    area_m2: float
+    total_force_n: float | None
+    major_axis_m: float
+    minor_axis_m: float
+    orientation_rad: float
+    peak: float
+    touches_border: bool
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Contact over the whole image: the union of its regions, and each region.
+
+    Attributes
+    ----------
+    present : bool
+    centroid_index, centroid_m : (float, float) or None
+        Centre of pressure of all regions together (taxel indices; sensor frame [m]).
+    area_m2 : float
+        Total contact area [m^2].
+    total_force_n : float or None
+        Total force [N] when the image is calibrated.
+    major_axis_m, minor_axis_m, orientation_rad : float
+        Principal axes of all contact taxels together (see `ContactRegion`).
+    regions : tuple of ContactRegion
+        Largest first.
+    """
+
+    present: bool
+    centroid_index: tuple[float, float] | None
+    centroid_m: tuple[float, float] | None
+    area_m2: float
+    total_force_n: float | None
+    major_axis_m: float
+    minor_axis_m: float
+    orientation_rad: float
+    regions: tuple[ContactRegion, ...]
+
+
+def _axes(
+    count: np.ndarray, s_r: np.ndarray, s_c: np.ndarray, s_rr, s_cc, s_rc, pitch
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Ellipse axes [m] and orientation from unweighted moment sums (vectorised)."""
+    mean_r, mean_c = s_r / count, s_c / count
+    # +1/12: a taxel is a unit square, not a point; keeps one taxel's axes at ~1 pitch
+    var_y = (s_rr / count - mean_r**2 + 1.0 / 12.0) * pitch[0] ** 2
+    var_x = (s_cc / count - mean_c**2 + 1.0 / 12.0) * pitch[1] ** 2
+    cov = (s_rc / count - mean_r * mean_c) * pitch[0] * pitch[1]
+    half_trace = (var_x + var_y) / 2
+    root = np.sqrt(((var_x - var_y) / 2) ** 2 + cov**2)
+    major = 4.0 * np.sqrt(half_trace + root)
+    minor = 4.0 * np.sqrt(np.maximum(half_trace - root, 0.0))
+    angle = 0.5 * np.arctan2(2 * cov, var_x - var_y)
+    angle = np.where(angle <= -math.pi / 2 + 1e-12, angle + math.pi, angle)
+    return major, minor, angle
+
+
+def contact_regions(prepared: Prepared) -> Contact:
+    """Measure the contact regions of a prepared image (the core of `find_contact`).
+
+    Parameters
+    ----------
+    prepared : Prepared
+        From `taxel.features.prepare`.
+
+    Returns
+    -------
+    Contact
+    """
+    n = prepared.n_regions
+    if n == 0:
+        return Contact(False, None, None, 0.0, None, 0.0, 0.0, 0.0, ())
+    labels = prepared.labels
+    rows, cols = np.nonzero(labels)
+    lab = labels[rows, cols]
+    values = prepared.image[rows, cols].astype(np.float64)
+    weight = np.maximum(prepared.smooth[rows, cols] - prepared.baseline, 0.0)
+    rows_f, cols_f = rows.astype(np.float64), cols.astype(np.float64)
+    size = n + 1
+    sums = [
+        np.bincount(lab, w, minlength=size)[1:]
+        for w in (None, rows_f, cols_f, rows_f**2, cols_f**2, rows_f * cols_f, weight)
+    ]
+    count, s_r, s_c, s_rr, s_cc, s_rc, s_w = sums
+    # the area counts taxels whose unsmoothed value clears the low threshold: smoothing
+    # widens a contact by about its sigma, thresholding the raw values does not
+    raw_count = np.bincount(lab[values >= prepared.low], minlength=size)[1:]
+    raw_count = np.where(raw_count > 0, raw_count, count)
+    w_r = np.bincount(lab, weight * rows_f, minlength=size)[1:]
+    w_c = np.bincount(lab, weight * cols_f, minlength=size)[1:]
+    safe = np.where(s_w > 0, s_w, 1.0)
+    cent_r = np.where(s_w > 0, w_r / safe, s_r / count)
+    cent_c = np.where(s_w > 0, w_c / safe, s_c / count)
+    major, minor, angle = _axes(count, s_r, s_c, s_rr, s_cc, s_rc, prepared.pitch)
+    peaks = np.full(size, -np.inf)
+    np.maximum.at(peaks, lab, values)
+    shape = labels.shape
+    border = np.zeros(size, bool)
+    edge = (rows == 0) | (cols == 0) | (rows == shape[0] - 1) | (cols == shape[1] - 1)
+    border[lab[edge]] = True
+    forces = None
+    if prepared.calibrated:
+        forces = np.bincount(lab, values, minlength=size)[1:] * prepared.taxel_area
+    half_r, half_c = (shape[0] - 1) / 2, (shape[1] - 1) / 2
+    row_pitch, col_pitch = prepared.pitch
+    regions = []
+    for i in np.argsort(-count, kind="stable"):
+        regions.append(
+            ContactRegion(
+                centroid_index=(float(cent_r[i]), float(cent_c[i])),
+                centroid_m=(
+                    float((cent_c[i] - half_c) * col_pitch),
+                    float((cent_r[i] - half_r) * row_pitch),
+                ),
+                area_taxels=int(raw_count[i]),
+                area_m2=float(raw_count[i] * prepared.taxel_area),
+                total_force_n=None if forces is None else float(forces[i]),
+                major_axis_m=float(major[i]),
+                minor_axis_m=float(minor[i]),
+                orientation_rad=float(angle[i]),
+                peak=float(peaks[i + 1]),
+                touches_border=bool(border[i + 1]),
+            )
+        )
+    total_w = float(s_w.sum())
+    if total_w > 0:
+        all_r, all_c = float(w_r.sum()) / total_w, float(w_c.sum()) / total_w
+    else:
+        all_r, all_c = float(s_r.sum() / count.sum()), float(s_c.sum() / count.sum())
+    total = [np.array([s.sum()]) for s in (count, s_r, s_c, s_rr, s_cc, s_rc)]
+    major_all, minor_all, angle_all = _axes(*total, prepared.pitch)
+    return Contact(
+        present=True,
+        centroid_index=(all_r, all_c),
+        centroid_m=((all_c - half_c) * col_pitch, (all_r - half_r) * row_pitch),
+        area_m2=float(raw_count.sum() * prepared.taxel_area),
+        total_force_n=None if forces is None else float(forces.sum()),
+        major_axis_m=float(major_all[0]),
+        minor_axis_m=float(minor_all[0]),
+        orientation_rad=float(angle_all[0]),
+        regions=tuple(regions),
+    )
+
+
+def find_contact(
+    image: Any,
+    sensor_or_pitch: Any,
+    *,
+    calibrated: bool = False,
+    smoothing: float = 1.0,
+    baseline: float | None = None,
+) -> Contact:
+    """Find the contact regions of a tactile image and measure each.
+
+    Parameters
+    ----------
+    image : array_like, shape (rows, cols)
+        Raw frame, calibrated reading or pressure map [Pa]; larger means more pressure.
+    sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
+        Taxel pitch [m].
+    calibrated : bool, default False
+        The image holds pressure [Pa]; the total force is then reported [N].
+    smoothing : float, default 1.0
+        Gaussian smoothing sigma [taxels].
+    baseline : float, optional
+        No-contact level [image units]; estimated when omitted (see `prepare`).
+
+    Returns
+    -------
+    Contact
+
+    Notes
+    -----
+    Contact taxels are found by hysteresis on the smoothed image: a region is the connected
+    set (8-neighbours) above a low threshold that holds at least one taxel above a high
+    threshold. Both thresholds are the larger of a multiple of the noise sigma and a
+    fraction of the contrast (see `taxel.features.prepare`).
+
+    Examples
+    --------
+    >>> pressure = np.zeros((16, 16)); pressure[4:8, 10:12] = 1e4  # 1 mm pitch, 8 mm^2
+    >>> contact = find_contact(pressure, 1e-3, calibrated=True, smoothing=0)
+    >>> contact.present, round(contact.area_m2 * 1e6, 3), round(contact.total_force_n, 4)
+    (True, 8.0, 0.08)
+    >>> [round(v * 1e3, 3) for v in contact.centroid_m]  # x, y [mm]
+    [3.0, -2.0]
+    """
+    prepared = prepare(
+        image, sensor_or_pitch, calibrated=calibrated, smoothing=smoothing, baseline=baseline
+    )
+    return contact_regions(prepared)

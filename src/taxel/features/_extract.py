@@ -1,0 +1,282 @@
+"""All passive features of one tactile image in one call, as a JSON-ready result."""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import asdict, dataclass
+from typing import Any
+
+import numpy as np
+
+from taxel._validation import as_finite_array, check_positive, check_range
+from taxel.features._contact import Contact, contact_regions
+from taxel.features._edges import edges_core
+from taxel.features._gaps import HoleReport, SlotReport, diameter_test, gaps_core
+from taxel.features._image import prepare
+from taxel.features._shape import ContactShape, shape_core
+from taxel.features._surface import ContactPlane, plane_core
+from taxel.features._texture import Texture, texture_core
+from taxel.frames import as_pose, transform_directions, transform_points
+
+__all__ = ["ContactPose", "TactileFeatures", "extract"]
+
+
+@dataclass(frozen=True)
+class ContactPose:
+    """Where the contact is and how it lies, in the sensor frame and the robot's base frame.
+
+    Attributes
+    ----------
+    position_sensor_m : (float, float, float)
+        Centre of pressure on the cover's surface in the sensor frame [m] (z = -depth there
+        when a depth map is given, else 0).
+    position_base_m : (float, float, float) or None
+        The same point in the base frame [m]; None without a pose.
+    axis_base : (float, float, float) or None
+        Unit vector of the contact's major axis (or the fitted line) in the base frame.
+    normal_base : (float, float, float) or None
+        Unit contact normal in the base frame: the fitted plane's normal, else the sensor's
+        +z (pointing from the sensor towards the object).
+    """
+
+    position_sensor_m: tuple[float, float, float]
+    position_base_m: tuple[float, float, float] | None
+    axis_base: tuple[float, float, float] | None
+    normal_base: tuple[float, float, float] | None
+
+
+@dataclass(frozen=True)
+class TactileFeatures:
+    """The passive features of one tactile image (Ellis seed, section 2.1).
+
+    Attributes
+    ----------
+    contact : Contact
+        Presence, regions, centroid, area, force, principal axes.
+    pose : ContactPose or None
+        The contact located in 3-D (None without contact).
+    shape : ContactShape
+        Contact type, edge and corner scores, the line and circle fits.
+    holes : HoleReport
+    slots : SlotReport
+    plane : ContactPlane
+        Planarity and, given depth, the contact plane's normal.
+    texture : Texture
+    """
+
+    contact: Contact
+    pose: ContactPose | None
+    shape: ContactShape
+    holes: HoleReport
+    slots: SlotReport
+    plane: ContactPlane
+    texture: Texture
+
+    @property
+    def contact_type(self) -> str:
+        """One of 'none', 'point', 'line', 'arc', 'surface', 'corner'."""
+        return self.shape.contact_type
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain dictionary of the features (the JSON layout of ``taxel features --json``).
+
+        Returns
+        -------
+        dict
+            Keys: contact, contact_type, contact_confidence, edge_score, corner_score,
+            n_edges, line, circle, holes, slots, planarity, normal, texture, regions.
+            Infinite or undefined numbers become None.
+        """
+        contact, shape, pose = self.contact, self.shape, self.pose
+        line = shape.line
+        circle = shape.circle
+        data = {
+            "contact": {
+                "present": contact.present,
+                "centroid_m": contact.centroid_m,
+                "centroid_index": contact.centroid_index,
+                "area_m2": contact.area_m2,
+                "total_force_n": contact.total_force_n,
+                "major_axis_m": contact.major_axis_m,
+                "minor_axis_m": contact.minor_axis_m,
+                "orientation_rad": contact.orientation_rad,
+                "position_sensor_m": pose.position_sensor_m if pose else None,
+                "centroid_base_m": pose.position_base_m if pose else None,
+                "axis_base": pose.axis_base if pose else None,
+                "normal_base": pose.normal_base if pose else None,
+            },
+            "contact_type": shape.contact_type,
+            "contact_confidence": shape.confidence,
+            "contact_rule": shape.rule,
+            "edge_score": shape.edge_score,
+            "corner_score": shape.corner_score,
+            "n_edges": shape.n_edges,
+            "line": {
+                "angle_rad": line.angle_rad if line else None,
+                "offset_m": line.offset_m if line else None,
+                "rms_m": line.rms_m if line else None,
+            },
+            "circle": {
+                "center_m": circle.center_m if circle else None,
+                "radius_m": circle.radius_m if circle else None,
+                "rms_m": circle.rms_m if circle else None,
+            },
+            "holes": {
+                "present": self.holes.present,
+                "count": self.holes.count,
+                "diameter_test": self.holes.diameter_test,
+                "items": [asdict(hole) for hole in self.holes.items],
+            },
+            "slots": {
+                "present": self.slots.present,
+                "count": self.slots.count,
+                "items": [asdict(slot) for slot in self.slots.items],
+            },
+            "planarity": self.plane.planarity,
+            "uniformity": self.plane.uniformity,
+            "fill": self.plane.fill,
+            "normal": self.plane.normal,
+            "tilt_rad": self.plane.tilt_rad,
+            "texture": asdict(self.texture),
+            "regions": [asdict(region) for region in contact.regions],
+        }
+        return _clean(data)
+
+    def to_json(self, **options: Any) -> str:
+        """The features as a JSON string (`to_dict`); `options` go to `json.dumps`."""
+        return json.dumps(self.to_dict(), **options)
+
+
+def _clean(value: Any) -> Any:
+    """Tuples to lists, NumPy scalars to Python, non-finite floats to None."""
+    if isinstance(value, dict):
+        return {key: _clean(item) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [_clean(item) for item in value]
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def _locate(
+    contact: Contact,
+    shape: ContactShape,
+    plane: ContactPlane,
+    depth: np.ndarray | None,
+    pose: np.ndarray | None,
+) -> ContactPose | None:
+    if not contact.present or contact.centroid_m is None or contact.centroid_index is None:
+        return None
+    z = 0.0
+    if depth is not None:
+        row, col = (int(round(v)) for v in contact.centroid_index)
+        z = -float(depth[row, col])
+    position = (contact.centroid_m[0], contact.centroid_m[1], z)
+    if pose is None:
+        return ContactPose(position, None, None, None)
+    # an edge's direction is the fitted line's; otherwise the contact's major axis
+    use_line = shape.contact_type == "line" and shape.line is not None
+    angle = shape.line.angle_rad if use_line and shape.line else contact.orientation_rad
+    axis = (math.cos(angle), math.sin(angle), 0.0)
+    normal = plane.normal if plane.normal is not None else (0.0, 0.0, 1.0)
+    return ContactPose(
+        position,
+        tuple(float(v) for v in transform_points(pose, position)),  # type: ignore[arg-type]
+        tuple(float(v) for v in transform_directions(pose, axis)),  # type: ignore[arg-type]
+        tuple(float(v) for v in transform_directions(pose, normal)),  # type: ignore[arg-type]
+    )
+
+
+def extract(
+    image: Any,
+    sensor_or_pitch: Any,
+    *,
+    pose: Any = None,
+    depth: Any = None,
+    calibrated: bool = False,
+    smoothing: float = 1.0,
+    baseline: float | None = None,
+    point_size: float = 2.5e-3,
+    texture_sigma: float = 2.0,
+) -> TactileFeatures:
+    """Every passive feature of one tactile image, located on the sensor and in the base frame.
+
+    Parameters
+    ----------
+    image : array_like, shape (rows, cols)
+        A raw frame (8 or 16 bit), a calibrated reading or a pressure map [Pa] of any
+        array geometry; larger values mean more pressure.
+    sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
+        Taxel pitch [m], a (row, column) pair, or a sensor description.
+    pose : array_like, shape (4, 4), optional
+        ``T_BS``, the sensor frame in the robot's base frame (see `taxel.frames`).
+    depth : array_like, shape (rows, cols), optional
+        Indentation of the cover's surface [m], positive into the cover, for sensors that
+        measure displacement or depth: gives the contact plane's normal and the contact's z.
+    calibrated : bool, default False
+        The image holds pressure [Pa], so areas carry a total force [N].
+    smoothing : float, default 1.0
+        Gaussian sigma before segmentation and edges [taxels].
+    baseline : float, optional
+        No-contact level [image units]; estimated as the smoothed image's minimum if omitted.
+    point_size : float, default 2.5e-3
+        Compact contacts up to this size [m] are points (see `classify_contact`).
+    texture_sigma : float, default 2.0
+        Gaussian sigma before counting texture maxima [taxels].
+
+    Returns
+    -------
+    TactileFeatures
+        Convert with ``.to_dict()`` or ``.to_json()``.
+
+    Notes
+    -----
+    The image is validated and segmented once (`prepare`); edges, gaps, contact type,
+    plane and texture all use that one segmentation. See each feature's function for its
+    method: `find_contact`, `detect_edges`, `classify_contact`, `detect_holes`,
+    `detect_slots`, `contact_plane`, `texture_measures`.
+
+    Examples
+    --------
+    >>> y, x = np.mgrid[:64, :64]
+    >>> frame = np.where(np.abs(y - 32) < 3, 200, 20).astype(np.uint8)  # a straight edge
+    >>> features = extract(frame, 0.25e-3, pose=np.eye(4))
+    >>> features.contact_type, features.holes.present, features.slots.present
+    ('line', False, False)
+    >>> [round(v * 1e3, 3) for v in features.pose.position_base_m]  # on the sensor's centre
+    [0.0, 0.125, 0.0]
+    """
+    prepared = prepare(
+        image, sensor_or_pitch, calibrated=calibrated, smoothing=smoothing, baseline=baseline
+    )
+    point_size = check_positive("point_size", point_size)
+    texture_sigma = check_range("texture_sigma", texture_sigma, 0.0, 20.0, low_inclusive=False)
+    pose_matrix = None if pose is None else as_pose(pose)
+    depth_map = None
+    if depth is not None:
+        depth_map = as_finite_array("depth", depth, ndim=2)
+        if depth_map.shape != prepared.image.shape:
+            raise ValueError(
+                f"`depth` must have the image's shape {prepared.image.shape}, "
+                f"got {depth_map.shape}"
+            )
+    contact = contact_regions(prepared)
+    edges = edges_core(prepared)
+    holes, slots, explained = gaps_core(prepared)
+    shape = shape_core(
+        prepared,
+        contact,
+        edges,
+        has_gaps=bool(holes or slots),
+        explained=explained,
+        point_size=point_size,
+    )
+    hole_report = HoleReport(bool(holes), len(holes), tuple(holes), diameter_test(prepared, edges))
+    slot_report = SlotReport(bool(slots), len(slots), tuple(slots))
+    plane = plane_core(prepared, depth_map)
+    texture = texture_core(prepared, sigma=texture_sigma)
+    located = _locate(contact, shape, plane, depth_map, pose_matrix)
+    return TactileFeatures(contact, located, shape, hole_report, slot_report, plane, texture)

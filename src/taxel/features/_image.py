@@ -1,0 +1,280 @@
+"""Shared preparation of a tactile image: pitch, smoothing, baseline, noise, contact mask.
+
+Every public feature function starts from `prepare`, so that `extract` can prepare an
+image once and hand the result to each feature. The thresholds are relative to two scales
+measured on the image itself, which makes the features work on raw 8-bit frames,
+calibrated readings and pressure maps alike:
+
+- the *noise* sigma of the smoothed image, from the median absolute deviation of the
+  high-pass residual (robust to the few taxels that belong to edges or scratches);
+- the *contrast*, peak minus baseline of the smoothed image.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import cv2
+import numpy as np
+
+from taxel._validation import check_finite, check_positive, check_range
+
+__all__ = ["Prepared", "pitch_pair", "prepare", "sensor_coordinates"]
+
+# Contact thresholds, in units of the smoothed image's noise sigma (k) or of the contrast (f).
+# The baseline is the minimum of the smoothed image, which lies about 3-4 sigma below the
+# mean background on 16x16 to 128x128 images: K_LOW = 8 therefore sits ~4 sigma above it,
+# where fewer than 1 in 10^4 background taxels cross by chance.
+K_LOW = 8.0
+# Seeds must stand ~6-7 sigma above the background mean; a blank noisy image has none.
+K_HIGH = 11.0
+# The extent of a contact is taken where it rises above 12 % of the contrast. Lower would
+# follow the cover's blur tail; higher would cut the centre of a flat punch, whose
+# pressure there is only ~1/6 of its (singular, discretised) rim peak.
+F_LOW = 0.12
+# Seeds need 35 % of the contrast, so a weak secondary blob (scratch, crosstalk, a noise
+# ridge on a textured field) joins the contact only when it touches a strong one.
+F_HIGH = 0.35
+# A contrast below this fraction of the image's magnitude is rounding, not contact.
+_RELATIVE_FLOOR = 1e-6
+
+
+@dataclass(frozen=True)
+class Prepared:
+    """A validated tactile image with its smoothed version and contact mask (internal).
+
+    Attributes
+    ----------
+    image : numpy.ndarray (float32)
+        The input values [image units].
+    smooth : numpy.ndarray (float32)
+        Gaussian-smoothed image.
+    pitch : tuple of float
+        (row pitch, column pitch) [m].
+    baseline, noise, contrast : float
+        Background level, noise sigma of `smooth`, and peak minus baseline [image units].
+    raw_noise : float
+        Noise sigma of `image` itself [image units].
+    low, high : float
+        Hysteresis thresholds on `smooth` [image units].
+    mask : numpy.ndarray (uint8)
+        1 on contact taxels.
+    labels : numpy.ndarray (int32)
+        Connected contact regions numbered 1..n (0 elsewhere).
+    n_regions : int
+    calibrated : bool
+        Whether `image` holds pressure [Pa].
+    """
+
+    image: np.ndarray
+    smooth: np.ndarray
+    pitch: tuple[float, float]
+    baseline: float
+    noise: float
+    contrast: float
+    raw_noise: float
+    low: float
+    high: float
+    mask: np.ndarray
+    labels: np.ndarray
+    n_regions: int
+    calibrated: bool
+
+    @property
+    def present(self) -> bool:
+        """Whether any contact region was found."""
+        return self.n_regions > 0
+
+    @property
+    def taxel_area(self) -> float:
+        """Area of one taxel [m^2]."""
+        return self.pitch[0] * self.pitch[1]
+
+    @property
+    def mean_pitch(self) -> float:
+        """Geometric mean of the row and column pitch [m]."""
+        return math.sqrt(self.taxel_area)
+
+
+def pitch_pair(sensor_or_pitch: Any) -> tuple[float, float]:
+    """(row pitch, column pitch) [m] from a pitch, a pair, or an object with `taxel_pitch`.
+
+    Parameters
+    ----------
+    sensor_or_pitch : float, (float, float) or object with a ``taxel_pitch`` attribute
+        Centre-to-centre distance of the taxels [m]; a pair gives (row, column) pitches.
+
+    Returns
+    -------
+    tuple of float
+
+    Examples
+    --------
+    >>> pitch_pair(1e-3)
+    (0.001, 0.001)
+    >>> pitch_pair((1e-3, 2e-3))
+    (0.001, 0.002)
+    """
+    value = getattr(sensor_or_pitch, "taxel_pitch", sensor_or_pitch)
+    if isinstance(value, tuple | list | np.ndarray):
+        if len(value) != 2:
+            raise ValueError(
+                f"`sensor_or_pitch` must be a pitch or a (row, column) pair, got {value!r}"
+            )
+        pair = (
+            check_positive("sensor_or_pitch[0]", value[0]),
+            check_positive("sensor_or_pitch[1]", value[1]),
+        )
+    else:
+        if isinstance(value, str | bytes):
+            raise TypeError(f"`sensor_or_pitch` must be a number in metres, got {value!r}")
+        pitch = check_positive("sensor_or_pitch", value)
+        pair = (pitch, pitch)
+    for number in pair:
+        if number > 1.0:
+            raise ValueError(
+                f"`sensor_or_pitch` must be a taxel pitch in metres (<= 1), got {number:g}"
+            )
+    return pair
+
+
+def sensor_coordinates(
+    rows: Any, cols: Any, shape: tuple[int, int], sensor_or_pitch: Any
+) -> tuple[np.ndarray, np.ndarray]:
+    """Positions (x, y) [m] in the sensor frame of (fractional) taxel indices.
+
+    Parameters
+    ----------
+    rows, cols : array_like
+        Row and column indices; fractions are allowed (centroids, fitted centres).
+    shape : (int, int)
+        (rows, cols) of the image.
+    sensor_or_pitch : float, pair or object with ``taxel_pitch``
+        Taxel pitch [m].
+
+    Returns
+    -------
+    x, y : numpy.ndarray
+        ``x = (col - (cols - 1) / 2) p_col``, ``y = (row - (rows - 1) / 2) p_row`` [m].
+
+    Examples
+    --------
+    >>> x, y = sensor_coordinates(0, 3, (4, 4), 1e-3)
+    >>> float(x), float(y)
+    (0.0015, -0.0015)
+    """
+    row_pitch, col_pitch = pitch_pair(sensor_or_pitch)
+    rows = np.asarray(rows, dtype=float)
+    cols = np.asarray(cols, dtype=float)
+    return (cols - (shape[1] - 1) / 2) * col_pitch, (rows - (shape[0] - 1) / 2) * row_pitch
+
+
+def _as_image(image: Any) -> np.ndarray:
+    """Validate a 2-D numeric image and return it as float32."""
+    array = np.asarray(image)
+    if array.dtype == bool:
+        array = array.astype(np.uint8)
+    if not (np.issubdtype(array.dtype, np.integer) or np.issubdtype(array.dtype, np.floating)):
+        raise TypeError(f"`image` must be numeric, got dtype {array.dtype}")
+    if array.ndim != 2:
+        raise ValueError(f"`image` must be 2-D (rows, cols), got shape {array.shape}")
+    if min(array.shape) < 3:
+        raise ValueError(f"`image` must be at least 3x3 taxels, got shape {array.shape}")
+    image32 = array.astype(np.float32)
+    if not np.isfinite(image32).all():
+        bad = int(image32.size - np.count_nonzero(np.isfinite(image32)))
+        raise ValueError(f"`image` must be finite everywhere, got {bad} NaN or inf value(s)")
+    return image32
+
+
+def _noise_sigma(image: np.ndarray, smooth: np.ndarray, smoothing: float) -> tuple[float, float]:
+    """Noise sigma of `image` and of `smooth`, from the median absolute high-pass residual."""
+    if smoothing == 0:
+        residual = image - cv2.GaussianBlur(image, (0, 0), 1.0, borderType=cv2.BORDER_REFLECT)
+        smoothing = 1.0
+        gain = 1.0
+    else:
+        residual = image - smooth
+        gain = None
+    # a 2-D Gaussian of sigma s has sum(g^2) ~ 1 / (4 pi s^2): white noise of sigma n leaves
+    # n sqrt(sum g^2) in the smoothed image and n sqrt(1 - 2 g0 + sum g^2) in the residual
+    squares = 1.0 / (4.0 * math.pi * smoothing**2)
+    centre = 1.0 / (2.0 * math.pi * smoothing**2)
+    residual_gain = math.sqrt(max(1.0 - 2.0 * min(centre, 1.0) + min(squares, 1.0), 1e-6))
+    if gain is None:
+        gain = math.sqrt(min(squares, 1.0))
+    # subsample 2x2 on large images: the median of 4k values is as good and 4x cheaper
+    sample = residual[::2, ::2] if residual.size > 4096 else residual
+    raw = 1.4826 * float(np.median(np.abs(sample))) / residual_gain
+    return raw, raw * gain
+
+
+def prepare(
+    image: Any,
+    sensor_or_pitch: Any,
+    *,
+    calibrated: bool = False,
+    smoothing: float = 1.0,
+    baseline: float | None = None,
+) -> Prepared:
+    """Validate, smooth and segment a tactile image (the first step of every feature).
+
+    Parameters
+    ----------
+    image : array_like, shape (rows, cols)
+        Raw frame (any integer or float dtype), calibrated reading or pressure map [Pa];
+        larger values mean more pressure.
+    sensor_or_pitch : float, pair or object with ``taxel_pitch``
+        Taxel pitch [m].
+    calibrated : bool, default False
+        The image holds pressure [Pa]: areas carry a total force.
+    smoothing : float, default 1.0
+        Sigma of the Gaussian smoothing [taxels], 0 to disable.
+    baseline : float, optional
+        The no-contact level [image units]; by default the minimum of the smoothed image,
+        which fails only when the whole sensor is in contact (pass 0 for pressure maps).
+
+    Returns
+    -------
+    Prepared
+
+    Examples
+    --------
+    >>> image = np.zeros((9, 9)); image[3:6, 3:6] = 1.0
+    >>> prepared = prepare(image, 1e-3)
+    >>> prepared.n_regions, int(prepared.mask.sum())
+    (1, 21)
+    """
+    values = _as_image(image)
+    pitch = pitch_pair(sensor_or_pitch)
+    smoothing = check_range("smoothing", smoothing, 0.0, 20.0)
+    if smoothing > 0:
+        smooth = cv2.GaussianBlur(values, (0, 0), smoothing, borderType=cv2.BORDER_REFLECT)
+    else:
+        smooth = values
+    raw_noise, noise = _noise_sigma(values, smooth, smoothing)
+    level = float(smooth.min()) if baseline is None else check_finite("baseline", baseline)
+    peak = float(smooth.max())
+    contrast = peak - level
+    floor = max(_RELATIVE_FLOOR * max(abs(peak), abs(level)), 1e-30)
+    low = level + max(K_LOW * noise, F_LOW * contrast)
+    high = level + max(K_HIGH * noise, F_HIGH * contrast)
+    if contrast <= max(K_HIGH * noise, floor):
+        empty = np.zeros(values.shape, np.uint8)
+        return Prepared(
+            values, smooth, pitch, level, noise, contrast, raw_noise, low, high, empty,
+            empty.astype(np.int32), 0, bool(calibrated),
+        )  # fmt: skip
+    candidates = (smooth >= low).view(np.uint8)
+    count, labels = cv2.connectedComponents(candidates, connectivity=8, ltype=cv2.CV_32S)
+    seeded = np.bincount(labels[smooth >= high], minlength=count) > 0
+    seeded[0] = False
+    keep = np.cumsum(seeded).astype(np.int32) * seeded
+    labels = keep[labels]
+    mask = (labels > 0).view(np.uint8)
+    return Prepared(
+        values, smooth, pitch, level, noise, contrast, raw_noise, low, high, mask, labels,
+        int(seeded.sum()), bool(calibrated),
+    )  # fmt: skip

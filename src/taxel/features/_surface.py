@@ -1,0 +1,131 @@
+"""Planarity of the contact area and the normal of the contact plane (Ellis seed, section 2)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import cv2
+import numpy as np
+
+from taxel._validation import as_finite_array
+from taxel.features._image import Prepared, prepare
+
+__all__ = ["ContactPlane", "contact_plane", "plane_core"]
+
+_ERODE = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (5, 5))
+
+
+@dataclass(frozen=True)
+class ContactPlane:
+    """How planar the contact is, and the normal of its plane when depth is known.
+
+    Attributes
+    ----------
+    planarity : float
+        ``uniformity * fill`` in [0, 1]: 1 for a flat face pressed evenly over a convex area.
+    uniformity : float
+        ``1 - std / mean`` of the signal above baseline over the contact's interior (the
+        contact eroded by 2 taxels, so the rim's blur and edge peaks do not count),
+        clipped to [0, 1].
+    fill : float
+        Contact area over the area of its convex hull [-].
+    normal : (float, float, float) or None
+        Unit normal of the plane fitted to the indented surface, in the sensor frame,
+        pointing away from the sensor (+z side); None without a depth map.
+    tilt_rad : float or None
+        Angle between `normal` and the sensor's +z [rad].
+    rms_m : float or None
+        RMS distance of the indented surface from the fitted plane [m].
+    """
+
+    planarity: float
+    uniformity: float
+    fill: float
+    normal: tuple[float, float, float] | None
+    tilt_rad: float | None
+    rms_m: float | None
+
+
+def plane_core(prepared: Prepared, depth: np.ndarray | None = None) -> ContactPlane:
+    """Planarity and normal of a prepared image (internal core of `contact_plane`)."""
+    if not prepared.present:
+        return ContactPlane(0.0, 0.0, 0.0, None, None, None)
+    mask = prepared.mask
+    interior = cv2.erode(mask, _ERODE)
+    if not interior.any():
+        interior = mask
+    values = prepared.smooth[interior.view(bool)] - prepared.baseline
+    mean = float(values.mean())
+    uniformity = min(max(1.0 - float(values.std()) / mean, 0.0), 1.0) if mean > 0 else 0.0
+    points = cv2.findNonZero(mask)
+    hull = float(cv2.contourArea(cv2.convexHull(points))) if points.shape[0] >= 3 else 0.0
+    # a taxel is a unit square: the hull through taxel centres misses half a taxel all round
+    area = float(np.count_nonzero(mask))
+    fill = min(area / (hull + 0.5 * cv2.arcLength(cv2.convexHull(points), True) + 1), 1.0)
+    normal = tilt = rms = None
+    if depth is not None:
+        rows, cols = np.nonzero(interior)  # the rim's taxels are half in contact
+        if rows.size >= 3:
+            shape = mask.shape
+            x = (cols - (shape[1] - 1) / 2) * prepared.pitch[1]
+            y = (rows - (shape[0] - 1) / 2) * prepared.pitch[0]
+            z = -depth[rows, cols]  # depth is into the cover, along -z of the sensor frame
+            design = np.column_stack((x, y, np.ones_like(x)))
+            (a, b, c), *_ = np.linalg.lstsq(design, z, rcond=None)
+            norm = math.sqrt(a * a + b * b + 1.0)
+            normal = (float(-a / norm), float(-b / norm), float(1.0 / norm))
+            tilt = math.acos(min(1.0 / norm, 1.0))
+            residual = (z - design @ np.array([a, b, c])) / norm
+            rms = float(math.sqrt(float(residual @ residual) / residual.size))
+    return ContactPlane(uniformity * fill, uniformity, fill, normal, tilt, rms)
+
+
+def contact_plane(
+    image: Any, sensor_or_pitch: Any, *, depth: Any = None, smoothing: float = 1.0
+) -> ContactPlane:
+    """Planarity of the contact area and, given depth, the normal of the contact plane.
+
+    Parameters
+    ----------
+    image : array_like, shape (rows, cols)
+        Raw frame, calibrated reading or pressure map.
+    sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
+        Taxel pitch [m].
+    depth : array_like, shape (rows, cols), optional
+        Indentation of the cover's surface at each taxel [m], positive into the cover
+        (the mechanics convention), from a sensor that measures displacement or depth.
+    smoothing : float, default 1.0
+        Gaussian sigma [taxels].
+
+    Returns
+    -------
+    ContactPlane
+
+    Notes
+    -----
+    Planarity (how uniform the contact is over its extent) multiplies the uniformity of
+    the signal over the contact's interior by how fully the contact fills its convex hull:
+    a flat face pressed evenly scores near 1; a dome, a ring or a texture scores less. The
+    plane ``z = a x + b y + c`` is fitted by least squares to the indented surface
+    ``z = -depth`` over the contact's interior; its normal is ``(-a, -b, 1) / |(-a, -b, 1)|``.
+
+    Examples
+    --------
+    >>> y, x = (np.mgrid[:32, :32] - 15.5) * 1e-3
+    >>> face = (np.hypot(x, y) < 10e-3).astype(float)
+    >>> tilted = np.where(face > 0, 1e-3 + 0.1 * x, 0.0)  # deeper at +x
+    >>> plane = contact_plane(face, 1e-3, depth=tilted)
+    >>> round(plane.planarity, 2), [round(v, 3) for v in plane.normal]
+    (0.93, [0.1, 0.0, 0.995])
+    """
+    prepared = prepare(image, sensor_or_pitch, smoothing=smoothing)
+    array = None
+    if depth is not None:
+        array = as_finite_array("depth", depth, ndim=2)
+        if array.shape != prepared.image.shape:
+            raise ValueError(
+                f"`depth` must have the image's shape {prepared.image.shape}, got {array.shape}"
+            )
+    return plane_core(prepared, array)

@@ -1,0 +1,70 @@
+import json
+
+import cv2
+import numpy as np
+import pytest
+
+from taxel.cli import main
+
+
+@pytest.fixture
+def washer():
+    y, x = np.mgrid[:64, :64] - 31.5
+    r = np.hypot(x, y)
+    return np.where((r < 24) & (r > 10), 200, 24).astype(np.uint8)
+
+
+@pytest.mark.parametrize("suffix", [".npy", ".png", ".tif", ".csv"])
+def test_formats_give_json(tmp_path, capsys, washer, suffix):
+    path = tmp_path / f"frame{suffix}"
+    if suffix == ".npy":
+        np.save(path, washer)
+    elif suffix == ".csv":
+        np.savetxt(path, washer, delimiter=",", fmt="%d")
+    else:
+        image = washer.astype(np.uint16) * 257 if suffix == ".tif" else washer
+        cv2.imwrite(str(path), image)
+    assert main(["features", str(path), "--pitch", "2.5e-4", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["contact"]["present"] and data["holes"]["count"] == 1
+    assert data["contact_type"] == "surface"
+
+
+def test_table_pose_and_figure(tmp_path, capsys, washer):
+    frame = tmp_path / "frame.npy"
+    np.save(frame, washer)
+    pose = tmp_path / "pose.json"
+    pose.write_text(json.dumps({"translation": [0.1, 0.2, 0.3], "rotvec": [0, 0, 0]}))
+    figure = tmp_path / "features.png"
+    args = ["features", str(frame), "--pitch", "2.5e-4", "--pose", str(pose)]
+    assert main([*args, "--figure", str(figure)]) == 0
+    out = capsys.readouterr().out
+    assert "contact type" in out and "(100.000, 200.000, 300.000)" in out
+    assert figure.stat().st_size > 1000
+
+
+@pytest.mark.parametrize(
+    ("setup", "extra", "match"),
+    [
+        ("missing", ["--pitch", "1e-3"], "no such file"),
+        ("text", ["--pitch", "1e-3"], "unknown file type"),
+        ("frame", [], "--pitch"),
+        ("frame", ["--pitch", "-1"], "`sensor_or_pitch` must be > 0"),
+        ("nan", ["--pitch", "1e-3"], "finite"),
+        ("badpose", ["--pitch", "1e-3", "--pose", "POSE"], "not valid JSON"),
+    ],
+)
+def test_errors_are_one_line(tmp_path, capsys, washer, setup, extra, match):
+    frame = tmp_path / "frame.npy"
+    np.save(frame, washer)
+    target = {"missing": tmp_path / "none.npy", "text": tmp_path / "a.txt"}.get(setup, frame)
+    if setup == "text":
+        target.write_text("1,2")
+    if setup == "nan":
+        np.save(frame, np.full((8, 8), np.nan))
+    pose = tmp_path / "pose.json"
+    pose.write_text("{not json")
+    extra = [str(pose) if item == "POSE" else item for item in extra]
+    assert main(["features", str(target), *extra]) == 2
+    err = capsys.readouterr().err
+    assert match in err and len(err.strip().splitlines()) == 1

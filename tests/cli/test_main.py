@@ -1,0 +1,44 @@
+"""The command line: version, help, the one-line error policy, and the interim demo."""
+
+import subprocess
+import sys
+
+import pytest
+
+import taxel
+from taxel.cli import main
+
+
+def test_version(capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(["--version"])
+    assert stop.value.code == 0
+    assert capsys.readouterr().out.strip() == f"taxel {taxel.__version__}"
+
+
+def test_help_lists_subcommands(capsys):
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    assert "demo" in capsys.readouterr().out
+
+
+def test_unknown_command_is_one_line_and_exit_2(capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(["teleport"])
+    assert stop.value.code == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and "invalid choice: 'teleport'" in error
+
+
+def test_python_dash_m_runs_the_same_program():
+    completed = subprocess.run(
+        [sys.executable, "-m", "taxel", "--version"], capture_output=True, text=True, check=False
+    )
+    assert completed.returncode == 0 and completed.stdout.startswith("taxel ")
+
+
+def test_demo_reports_every_check_and_computes_verdicts(capsys):
+    assert main(["demo"]) == 0
+    out = capsys.readouterr().out
+    assert "7 of 7 checks within tolerance" in out
+    assert out.count(" pass") == 7

@@ -1,0 +1,336 @@
+"""Each feature on synthetic images with known answers; invariance; degenerate input."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+from synthetic import (
+    arc,
+    band,
+    cone,
+    corner,
+    flat_punch,
+    half_plane,
+    plate_with_hole,
+    plate_with_slot,
+    render,
+    sphere,
+    texture,
+    washer,
+)
+
+import taxel.features
+from taxel.features import (
+    classify_contact,
+    contact_plane,
+    detect_holes,
+    detect_slots,
+    extract,
+    find_contact,
+    fit_circle,
+    fit_line,
+    texture_measures,
+)
+from taxel.frames import make_pose
+
+PITCH = 3.3e-2 / 128
+
+CASES = [
+    ("point", cone, {"centre": (7.0, -12.0)}),
+    ("surface", sphere, {"radius": 14.0}),
+    ("surface", flat_punch, {"centre": (-5.0, 3.0)}),
+    ("line", band, {"angle": 0.4}),
+    ("line", band, {"angle": 1.2, "wedge": True, "half_width": 3.0}),
+    ("arc", arc, {}),
+    ("surface", washer, {}),
+    ("line", half_plane, {"angle": 0.3}),
+    ("corner", corner, {"angle": 0.5, "centre": (10.0, 5.0)}),
+    ("surface", plate_with_hole, {"centre": (10.0, 5.0)}),
+    ("surface", plate_with_slot, {"angle": 0.3}),
+    ("surface", texture, {}),
+]
+
+
+def test_public_namespace():
+    assert "extract" in taxel.features.__all__
+    for name in taxel.features.__all__:
+        assert hasattr(taxel.features, name)
+
+
+@pytest.mark.parametrize("ftir", [False, True])
+@pytest.mark.parametrize(("expected", "pattern", "parameters"), CASES)
+def test_contact_type(expected, pattern, parameters, ftir):
+    image = render(pattern, ftir=ftir, noise=0.04 if ftir else 0.02, scratches=3, rng=5,
+                   **parameters)  # fmt: skip
+    assert classify_contact(image, PITCH).contact_type == expected
+
+
+@pytest.mark.parametrize("angle", [0.0, 0.7, 1.9, 2.6])
+@pytest.mark.parametrize(
+    ("expected", "pattern", "extra"),
+    [("line", band, {}), ("corner", corner, {}), ("line", half_plane, {})],
+)
+def test_contact_type_invariant_under_rotation_and_translation(expected, pattern, extra, angle):
+    rng = np.random.default_rng(int(angle * 10))
+    centre = tuple(rng.uniform(-12, 12, size=2))
+    image = render(pattern, ftir=True, noise=0.03, rng=rng, angle=angle, centre=centre, **extra)
+    assert classify_contact(image, PITCH).contact_type == expected
+
+
+@pytest.mark.parametrize("shift", [(-30.0, 20.0), (0.0, 0.0), (25.0, -15.0)])
+def test_point_type_and_centroid_under_translation(shift):
+    image = render(cone, noise=0.01, rng=2, centre=shift)
+    features = extract(image, PITCH)
+    assert features.contact_type == "point"
+    row, col = features.contact.centroid_index
+    assert abs(col - 63.5 - shift[0]) < 0.5
+    assert abs(row - 63.5 - shift[1]) < 0.5
+
+
+@pytest.mark.parametrize("angle", [0.1, 0.8, 2.0, 3.0])
+def test_line_angle_within_two_degrees(angle):
+    image = render(band, ftir=True, noise=0.05, rng=3, angle=angle, centre=(5.0, -4.0))
+    line = classify_contact(image, PITCH).line
+    error = abs((line.angle_rad - angle + math.pi / 2) % math.pi - math.pi / 2)
+    assert math.degrees(error) < 2.0
+    # the line passes through the band's centre: offset = -sin(a) x + cos(a) y
+    offset = (-math.sin(angle) * 5.0 + math.cos(angle) * -4.0) * PITCH
+    assert line.offset_m == pytest.approx(offset, abs=0.7 * PITCH)
+
+
+def test_arc_radius_within_five_percent():
+    image = render(arc, ftir=True, noise=0.03, rng=4, centre=(10.0, -90.0), radius=110.0)
+    shape = classify_contact(image, PITCH)
+    assert shape.contact_type == "arc"
+    assert shape.circle.radius_m == pytest.approx(110.0 * PITCH, rel=0.05)
+    assert shape.circle.center_m[0] == pytest.approx(10.0 * PITCH, abs=3 * PITCH)
+
+
+def test_contact_measures_of_a_rectangle():
+    pressure = np.zeros((20, 30))
+    pressure[5:9, 10:22] = 2e4  # 4 x 12 taxels at 1 mm, 20 kPa
+    contact = find_contact(pressure, 1e-3, calibrated=True, smoothing=0)
+    region = contact.regions[0]
+    assert region.area_taxels == 48
+    assert region.total_force_n == pytest.approx(48 * 1e-6 * 2e4)
+    assert region.centroid_index == pytest.approx((6.5, 15.5))
+    assert region.centroid_m == pytest.approx(((15.5 - 14.5) * 1e-3, (6.5 - 9.5) * 1e-3))
+    assert region.orientation_rad == pytest.approx(0.0, abs=1e-9)
+    assert region.major_axis_m == pytest.approx(3 * region.minor_axis_m)
+    assert not region.touches_border
+
+
+def test_several_regions_sorted_by_size():
+    image = np.zeros((32, 32))
+    image[2:6, 2:6] = 1.0
+    image[15:25, 15:25] = 1.0
+    contact = find_contact(image, 1e-3, smoothing=0)
+    assert [r.area_taxels for r in contact.regions] == [100, 16]
+
+
+@pytest.mark.parametrize("ftir", [False, True])
+def test_washer_hole_by_both_tests(ftir):
+    image = render(washer, ftir=ftir, noise=0.03 if ftir else 0.01, rng=6, centre=(8.0, -6.0))
+    report = detect_holes(image, PITCH)
+    assert report.count == 1 and report.diameter_test
+    hole = report.items[0]
+    assert hole.center_m == pytest.approx((8.0 * PITCH, -6.0 * PITCH), abs=0.6 * PITCH)
+    assert hole.radius_m == pytest.approx(8.0 * PITCH, rel=0.25)
+
+
+def test_plate_hole_found_by_gap_test_only():
+    image = render(plate_with_hole, ftir=True, noise=0.03, rng=7, centre=(-20.0, 15.0))
+    report = detect_holes(image, PITCH)
+    assert report.present and report.count == 1
+    assert not report.diameter_test  # the seed's test assumes a round object
+
+
+@pytest.mark.parametrize(
+    ("pattern", "parameters"),
+    [(cone, {}), (sphere, {}), (flat_punch, {}), (band, {}), (arc, {}), (corner, {})],
+)
+def test_no_false_holes_or_slots(pattern, parameters):
+    image = render(pattern, ftir=True, noise=0.04, rng=8, **parameters)
+    features = extract(image, PITCH)
+    assert not features.holes.present
+    assert not features.slots.present
+
+
+@pytest.mark.parametrize("angle", [0.0, 0.5, 2.2])
+def test_slot_position_direction_width_length(angle):
+    image = render(plate_with_slot, noise=0.01, rng=9, angle=angle, centre=(6.0, -3.0),
+                   width=10.0, length=50.0)  # fmt: skip
+    report = detect_slots(image, PITCH)
+    assert report.count == 1
+    slot = report.items[0]
+    error = abs((slot.angle_rad - angle + math.pi / 2) % math.pi - math.pi / 2)
+    assert math.degrees(error) < 2.0
+    assert slot.center_m == pytest.approx((6.0 * PITCH, -3.0 * PITCH), abs=PITCH)
+    assert slot.width_m == pytest.approx(10.0 * PITCH, rel=0.3)
+    assert slot.length_m == pytest.approx(50.0 * PITCH, rel=0.1)
+    assert not slot.truncated
+
+
+def test_slot_running_off_the_array():
+    image = render(plate_with_slot, noise=0.01, rng=9, angle=0.2, width=8.0, length=400.0)
+    slot = detect_slots(image, PITCH).items[0]
+    assert slot.truncated
+
+
+def test_fits_reference_values():
+    t = np.linspace(0, 2, 30)
+    line = fit_line(np.column_stack((t, 0.5 - t)))
+    assert math.degrees(line.angle_rad) == pytest.approx(135.0)
+    assert line.rms_m == pytest.approx(0.0, abs=1e-12)
+    phase = np.linspace(0.3, 1.7, 40)
+    circle = fit_circle(np.column_stack((1e-3 + 5e-3 * np.cos(phase), 5e-3 * np.sin(phase))))
+    assert circle.radius_m == pytest.approx(5e-3, rel=1e-9)
+    assert circle.center_m == pytest.approx((1e-3, 0.0), abs=1e-12)
+    collinear = fit_circle([[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])
+    assert math.isinf(collinear.radius_m)
+    with pytest.raises(ValueError, match="`points` must hold at least 3"):
+        fit_circle([[0.0, 0.0], [1.0, 1.0]])
+
+
+def test_texture_orders_with_bumpiness_and_is_size_free():
+    rng = np.random.default_rng(0)
+    smooth = render(texture, rng=rng, count=10, spike=0.2, width=5.0)
+    rough = render(texture, rng=rng, count=60, spike=1.0, width=1.5)
+    first, second = texture_measures(smooth, PITCH), texture_measures(rough, PITCH)
+    assert second.maxima_count > first.maxima_count
+    assert sum(second.band_energy[:2]) > sum(first.band_energy[:2])
+    # the spectral measures of a periodic texture do not depend on the image size
+    sizes = []
+    for n in (64, 128):
+        y, x = np.mgrid[:n, :n]
+        field = 1.0 + 0.3 * np.sin(2 * np.pi * x / 8.0)
+        sizes.append(texture_measures(field, PITCH).dominant_wavelength_m)
+    assert sizes[0] == pytest.approx(8 * PITCH, rel=0.02)
+    assert sizes[1] == pytest.approx(sizes[0], rel=0.02)
+
+
+def test_planarity_and_normal():
+    y, x = np.mgrid[:128, :128] - 63.5
+    face = (np.hypot(x, y) < 30).astype(float)  # an evenly pressed flat face
+    dome = render(sphere, noise=0.0, radius=30.0)
+    assert contact_plane(face, PITCH).planarity > contact_plane(dome, PITCH).planarity
+    y, x = (np.mgrid[:64, :64] - 31.5) * PITCH
+    tilt = math.radians(10)
+    depth = 2e-4 + math.tan(tilt) * y
+    plane = contact_plane(np.ones((64, 64)), PITCH, depth=depth)
+    assert plane.planarity == 0.0 or plane.normal is None  # uniform image: no contrast
+    image = np.where(np.hypot(x, y) < 6e-3, 1.0, 0.0)
+    plane = contact_plane(image, PITCH, depth=depth)
+    assert plane.tilt_rad == pytest.approx(tilt, abs=1e-6)
+    assert plane.normal[1] == pytest.approx(math.sin(tilt), abs=1e-6)
+    with pytest.raises(ValueError, match="`depth` must have the image's shape"):
+        contact_plane(image, PITCH, depth=np.zeros((3, 3)))
+
+
+def test_contact_in_base_frame():
+    image = render(cone, noise=0.0, centre=(20.0, -10.0))
+    rotation = Rotation.from_euler("xyz", [170, 20, 35], degrees=True)
+    pose = make_pose(rotation, [0.4, -0.1, 0.3])
+    features = extract(image, PITCH, pose=pose)
+    on_sensor = np.array([20.0 * PITCH, -10.0 * PITCH, 0.0])
+    expected = rotation.apply(on_sensor) + np.array([0.4, -0.1, 0.3])
+    assert np.linalg.norm(np.array(features.pose.position_base_m) - expected) < 0.5 * PITCH
+    assert features.pose.normal_base == pytest.approx(rotation.apply([0, 0, 1]))
+
+
+def test_json_layout():
+    image = render(washer, ftir=True, noise=0.02, rng=1)
+    data = json.loads(extract(image, PITCH, pose=np.eye(4)).to_json())
+    assert set(data["contact"]) >= {
+        "present", "centroid_m", "area_m2", "total_force_n", "centroid_base_m"
+    }  # fmt: skip
+    assert data["contact_type"] in taxel.features.CONTACT_TYPES
+    assert set(data["line"]) >= {"angle_rad", "rms_m"}
+    assert set(data["circle"]) >= {"center_m", "radius_m", "rms_m"}
+    assert data["holes"]["present"] and data["holes"]["count"] == 1
+    assert set(data["holes"]["items"][0]) == {"center_index", "center_m", "radius_m"}
+    assert data["slots"] == {"present": False, "count": 0, "items": []}
+    assert {"planarity", "normal", "texture"} <= set(data)
+    assert {"maxima_count", "mean_height"} <= set(data["texture"])
+
+
+@pytest.mark.parametrize("shape", [(16, 16), (128, 128), (12, 40)])
+def test_blank_image_has_no_contact(shape):
+    for blank in (np.zeros(shape), np.full(shape, 24, np.uint8)):
+        features = extract(blank, 1e-3)
+        assert not features.contact.present
+        assert features.contact_type == "none"
+        assert features.pose is None
+        json.loads(features.to_json())
+
+
+def test_noise_only_image_has_no_contact():
+    rng = np.random.default_rng(1)
+    noisy = np.clip(rng.normal(24, 6, size=(128, 128)), 0, 255).astype(np.uint8)
+    assert not extract(noisy, PITCH).contact.present
+
+
+def test_saturated_image():
+    saturated = np.full((32, 32), 255, np.uint8)
+    assert not extract(saturated, 1e-3).contact.present  # no contrast, no known baseline
+    features = extract(saturated, 1e-3, baseline=24)
+    assert features.contact.present and features.contact_type == "surface"
+    assert features.contact.area_m2 == pytest.approx(32 * 32 * 1e-6)
+
+
+def test_single_hot_taxel():
+    image = np.zeros((16, 16), np.uint16)
+    image[5, 9] = 4000
+    features = extract(image, 1.5e-3)
+    assert features.contact_type == "point"
+    assert features.contact.centroid_index == pytest.approx((5.0, 9.0))
+
+
+def test_sixteen_by_sixteen_array():
+    image = render(cone, (16, 16), noise=0.01, rng=1, centre=(2.0, -3.0), radius=1.0)
+    features = extract(image, 1.5e-3, calibrated=True)
+    assert features.contact_type == "point"
+    assert features.contact.total_force_n > 0
+    assert features.contact.centroid_index[1] == pytest.approx(7.5 + 2.0, abs=0.5)
+
+
+def test_pitch_pair_and_duck_typed_sensor():
+    class Sensor:
+        taxel_pitch = (1e-3, 2e-3)
+
+    image = np.zeros((10, 10))
+    image[4:6, 4:6] = 1.0
+    contact = find_contact(image, Sensor(), smoothing=0)
+    assert contact.area_m2 == pytest.approx(4 * 2e-6)
+
+
+@pytest.mark.parametrize(
+    ("image", "pitch", "error", "match"),
+    [
+        (np.full((8, 8), np.nan), 1e-3, ValueError, "`image` must be finite everywhere, got 64"),
+        (np.zeros((4, 4, 3)), 1e-3, ValueError, "`image` must be 2-D"),
+        (np.zeros((2, 8)), 1e-3, ValueError, "at least 3x3"),
+        (np.array([["a"] * 4] * 4), 1e-3, TypeError, "`image` must be numeric"),
+        (np.zeros((8, 8)), -1.0, ValueError, "`sensor_or_pitch` must be > 0"),
+        (np.zeros((8, 8)), 5.0, ValueError, "metres"),
+        (np.zeros((8, 8)), (1e-3, 1e-3, 1e-3), ValueError, "pair"),
+        (np.zeros((8, 8)), "1mm", TypeError, "`sensor_or_pitch`"),
+    ],
+)
+def test_bad_input(image, pitch, error, match):
+    with pytest.raises(error, match=match):
+        extract(image, pitch)
+
+
+def test_bad_options():
+    image = np.zeros((8, 8))
+    with pytest.raises(ValueError, match="`pose` must have shape"):
+        extract(image, 1e-3, pose=np.eye(3))
+    with pytest.raises(ValueError, match="`smoothing`"):
+        extract(image, 1e-3, smoothing=-1)
+    with pytest.raises(ValueError, match="`point_size`"):
+        extract(image, 1e-3, point_size=0)
+    with pytest.raises(ValueError, match="`depth`"):
+        extract(image, 1e-3, depth=np.zeros((2, 2)))
