@@ -1,0 +1,38 @@
+"""Active touch: sensing that moves the sensor over the object (Ellis seed, section 2.2).
+
+Texture from sliding (spatial-frequency signature)
+--------------------------------------------------
+texture_signature, TextureSignature, spatial_power_spectrum, band_power, texture_features,
+DEFAULT_BAND_EDGES
+
+Texture classification (k nearest neighbours, JSON models)
+---------------------------------------------------------
+fit_texture_classifier, TextureClassifier, cross_validate_texture, CrossValidation
+"""
+
+from taxel.active._spatial_spectrum import band_power, spatial_power_spectrum
+from taxel.active._texture_classifier import (
+    CrossValidation,
+    TextureClassifier,
+    cross_validate_texture,
+    fit_texture_classifier,
+)
+from taxel.active._texture_signature import (
+    DEFAULT_BAND_EDGES,
+    TextureSignature,
+    texture_features,
+    texture_signature,
+)
+
+__all__ = [
+    "DEFAULT_BAND_EDGES",
+    "CrossValidation",
+    "TextureClassifier",
+    "TextureSignature",
+    "band_power",
+    "cross_validate_texture",
+    "fit_texture_classifier",
+    "spatial_power_spectrum",
+    "texture_features",
+    "texture_signature",
+]

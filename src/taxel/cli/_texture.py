@@ -1,0 +1,152 @@
+"""``taxel texture``: fit a texture classifier on sliding recordings, and classify new ones.
+
+``taxel texture fit DIR... --out MODEL.json`` reads every FabricSlide recording in the
+folders (the fabric of each is in its file name), computes its spatial-frequency texture
+features and stores a nearest-neighbour model as JSON. ``taxel texture classify FILE...
+--model MODEL.json`` prints the predicted fabric of each recording.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from taxel.active import (
+    DEFAULT_BAND_EDGES,
+    TextureClassifier,
+    fit_texture_classifier,
+    texture_features,
+    texture_signature,
+)
+from taxel.io import list_fabricslide_files, parse_fabricslide_name, read_fabricslide
+
+__all__ = ["register"]
+
+_SIGNATURE_SETTINGS = ("band_edges", "segment_length", "trim_fraction")
+
+
+def _features(path: Path, settings: Mapping[str, Any]) -> np.ndarray:
+    recording = read_fabricslide(path)
+    options = {name: settings[name] for name in _SIGNATURE_SETTINGS if name in settings}
+    signature = texture_signature(
+        recording.readings, recording.time, recording.sliding_velocity, **options
+    )
+    return texture_features(signature)
+
+
+def _fit(arguments: argparse.Namespace) -> int:
+    out = Path(arguments.out)
+    if out.exists() and not arguments.force:
+        raise FileExistsError(f"{out} exists; pass --force to overwrite it")
+    files = [path for folder in arguments.directories for path in list_fabricslide_files(folder)]
+    settings = {
+        "reader": "fabricslide",
+        "band_edges": [float(edge) for edge in DEFAULT_BAND_EDGES],
+        "segment_length": arguments.segment_length,
+        "trim_fraction": arguments.trim_fraction,
+    }
+    features = np.array([_features(path, settings) for path in files])
+    labels = [str(parse_fabricslide_name(path)["fabric"]) for path in files]
+    model = fit_texture_classifier(
+        features, labels, n_neighbors=arguments.neighbors, settings=settings
+    )
+    model.save(out, overwrite=arguments.force)
+    counts = ", ".join(f"{label} {labels.count(label)}" for label in model.classes)
+    print(f"fitted {len(files)} recordings of {len(model.classes)} classes ({counts}) -> {out}")
+    return 0
+
+
+def _classify(arguments: argparse.Namespace) -> int:
+    model = TextureClassifier.load(arguments.model)
+    features = np.array([_features(Path(path), model.settings) for path in arguments.files])
+    predictions = model.predict(features)
+    if arguments.json:
+        rows = [
+            {"file": str(path), "predicted": str(label)}
+            for path, label in zip(arguments.files, predictions, strict=True)
+        ]
+        json.dump(rows, sys.stdout, indent=2)
+        sys.stdout.write("\n")
+    else:
+        for path, label in zip(arguments.files, predictions, strict=True):
+            print(f"{path}\t{label}")
+    return 0
+
+
+def _fraction(text: str) -> float:
+    value = float(text)
+    if not 0 <= value <= 0.45:
+        raise argparse.ArgumentTypeError(f"must lie in [0, 0.45], got {text}")
+    return value
+
+
+def _positive(text: str) -> float:
+    value = float(text)
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"must be > 0, got {text}")
+    return value
+
+
+def _count(text: str) -> int:
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be >= 1, got {text}")
+    return value
+
+
+def register(commands: Any) -> None:
+    """Add the ``texture`` command and its ``fit`` and ``classify`` subcommands.
+
+    Parameters
+    ----------
+    commands : argparse._SubParsersAction
+        The subcommand registry of the ``taxel`` parser.
+    """
+    texture = commands.add_parser(
+        "texture",
+        help="classify fabrics from sliding recordings",
+        description="Texture classification from sliding recordings (FabricSlide csv).",
+    )
+    actions = texture.add_subparsers(dest="texture_command", metavar="ACTION", required=True)
+    fit = actions.add_parser(
+        "fit",
+        help="fit a classifier on labelled recordings",
+        description="Fit a nearest-neighbour texture classifier on every FabricSlide "
+        "recording in the folders; the fabric of each comes from its file name.",
+    )
+    fit.add_argument("directories", nargs="+", metavar="DIR", help="folders of recordings")
+    fit.add_argument("--out", required=True, metavar="MODEL.json", help="model file to write")
+    fit.add_argument("--force", action="store_true", help="overwrite an existing model file")
+    fit.add_argument(
+        "--neighbors", type=_count, default=1, metavar="K", help="neighbours that vote (1)"
+    )
+    fit.add_argument(
+        "--segment-length",
+        type=_positive,
+        default=0.2,
+        metavar="METRES",
+        help="travel per spectral segment [m] (0.2)",
+    )
+    fit.add_argument(
+        "--trim-fraction",
+        type=_fraction,
+        default=0.1,
+        metavar="FRACTION",
+        help="fraction of each recording dropped at each end (0.1)",
+    )
+    fit.set_defaults(handler=_fit)
+    classify = actions.add_parser(
+        "classify",
+        help="predict the fabric of recordings",
+        description="Print the predicted fabric of each FabricSlide recording.",
+    )
+    classify.add_argument("files", nargs="+", metavar="FILE", help="recordings to classify")
+    classify.add_argument("--model", required=True, metavar="MODEL.json", help="fitted model")
+    classify.add_argument("--json", action="store_true", help="print JSON instead of text")
+    classify.set_defaults(handler=_classify)

@@ -1,0 +1,35 @@
+"""Readers of tactile frames, sequences and recordings.
+
+Every reader validates the file: a missing file raises `FileNotFoundError` naming it; an
+empty, truncated, ragged, corrupt or non-numeric one raises `ValueError` naming the file and,
+for text, the line.
+
+Frames and sequences (npy, npz, png, tif, csv)
+----------------------------------------------
+read_frame, read_sequence, TactileSequence
+
+FabricSlide recordings (capacitive finger sliding over fabrics)
+---------------------------------------------------------------
+read_fabricslide, FabricSlideRecording, parse_fabricslide_name, list_fabricslide_files,
+CPM_FINGER
+"""
+
+from taxel.io._fabricslide import (
+    CPM_FINGER,
+    FabricSlideRecording,
+    list_fabricslide_files,
+    parse_fabricslide_name,
+    read_fabricslide,
+)
+from taxel.io._frames import TactileSequence, read_frame, read_sequence
+
+__all__ = [
+    "CPM_FINGER",
+    "FabricSlideRecording",
+    "TactileSequence",
+    "list_fabricslide_files",
+    "parse_fabricslide_name",
+    "read_fabricslide",
+    "read_frame",
+    "read_sequence",
+]

@@ -1,0 +1,260 @@
+"""Readers of single tactile frames and of frame sequences (npy, npz, png, tif, csv).
+
+A *frame* is one tactile image: a 2-D array of readings indexed (row, col), as in
+`docs/architecture.md`. A *sequence* is a series of readings over time: a frame, or a
+vector of channels, per time step, with a time stamp per step.
+"""
+
+from __future__ import annotations
+
+import os
+import zipfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from taxel._validation import check_positive
+from taxel.io._table import check_file, read_numeric_table
+
+__all__ = ["TactileSequence", "read_frame", "read_sequence"]
+
+_IMAGE_SUFFIXES = (".png", ".tif", ".tiff")
+_FRAME_SUFFIXES = (".npy", ".npz", ".csv", *_IMAGE_SUFFIXES)
+_TIME_COLUMNS = ("timestamp", "time")
+
+
+@dataclass(frozen=True)
+class TactileSequence:
+    """Readings over time, as read from a file.
+
+    Attributes
+    ----------
+    time : numpy.ndarray
+        (n_steps,) time of each step [s], non-decreasing.
+    readings : numpy.ndarray
+        (n_steps, ...) float64 readings per step: (n_steps, n_channels) for channel data,
+        (n_steps, rows, cols) for frames. Units are those of the file (raw counts for
+        most sensors).
+    channel_names : tuple of str
+        Names of the channels (the csv header without the time column); empty for frames.
+    """
+
+    time: np.ndarray
+    readings: np.ndarray
+    channel_names: tuple[str, ...] = ()
+
+    @property
+    def n_steps(self) -> int:
+        """Number of time steps."""
+        return int(self.time.shape[0])
+
+
+def _finite(path: Path, array: np.ndarray, what: str) -> np.ndarray:
+    """Return `array` as float64, or raise naming the file when it is not finite numbers."""
+    if array.dtype == object or not (
+        np.issubdtype(array.dtype, np.number) or array.dtype == np.bool_
+    ):
+        raise ValueError(f"{path}: {what} holds {array.dtype} data, not numbers")
+    array = np.asarray(array, dtype=np.float64)
+    if array.size == 0:
+        raise ValueError(f"{path}: {what} is empty (shape {array.shape})")
+    if not np.all(np.isfinite(array)):
+        bad = int(array.size - np.count_nonzero(np.isfinite(array)))
+        raise ValueError(f"{path}: {what} has {bad} NaN or infinite value(s)")
+    return array
+
+
+def _load_npy(path: Path) -> np.ndarray:
+    try:
+        with path.open("rb") as handle:
+            return np.load(handle, allow_pickle=False)
+    except (ValueError, EOFError, OSError) as error:
+        raise ValueError(f"{path}: not a readable .npy file ({error})") from None
+
+
+def _load_npz(path: Path) -> dict[str, np.ndarray]:
+    # numpy leaves the file open when the archive is corrupt, so we own the handle
+    try:
+        with path.open("rb") as handle, np.load(handle, allow_pickle=False) as archive:
+            return {name: archive[name] for name in archive.files}
+    except (ValueError, EOFError, OSError, zipfile.BadZipFile) as error:
+        raise ValueError(f"{path}: not a readable .npz file ({error})") from None
+
+
+def _pick(path: Path, arrays: dict[str, np.ndarray], key: str | None) -> tuple[str, np.ndarray]:
+    """The array named `key`, or the only one; a clear error when that is ambiguous."""
+    names = ", ".join(sorted(arrays)) or "none"
+    if key is not None:
+        if key not in arrays:
+            raise ValueError(f"{path}: no array named {key!r}; the file holds: {names}")
+        return key, arrays[key]
+    if len(arrays) != 1:
+        raise ValueError(f"{path}: holds {len(arrays)} arrays ({names}); choose one with `key`")
+    return next(iter(arrays.items()))
+
+
+def _read_image(path: Path) -> np.ndarray:
+    import cv2  # heavy; imported only when an image is read
+
+    image = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
+    if image is None:
+        raise ValueError(f"{path}: cannot decode the image (corrupt or truncated file?)")
+    if path.suffix.lower() in (".tif", ".tiff") and cv2.imcount(str(path)) > 1:
+        raise ValueError(f"{path}: holds {cv2.imcount(str(path))} pages; a frame is one page")
+    if image.ndim != 2:
+        raise ValueError(
+            f"{path}: a tactile frame must be a grayscale image, got {image.shape[2]} channels"
+        )
+    return image
+
+
+def read_frame(path: str | os.PathLike[str], *, key: str | None = None) -> np.ndarray:
+    r"""Read one tactile frame from a .npy, .npz, .png, .tif or .csv file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file; its suffix selects the format.
+    key : str, optional
+        For .npz archives holding several arrays, the name of the frame's array.
+
+    Returns
+    -------
+    numpy.ndarray
+        (rows, cols) float64 frame, in the file's units (8- and 16-bit images keep their
+        integer values, 0..255 and 0..65535).
+
+    Raises
+    ------
+    FileNotFoundError
+        When `path` does not exist.
+    ValueError
+        Naming the file (and line, for csv) when the format is unknown, the file is empty,
+        truncated, corrupt, ragged or non-numeric, holds NaN or inf, is not 2-D, is a colour
+        image, an .npz holds several arrays and `key` is not given, or a csv has a time
+        column (that is a sequence: use `read_sequence`).
+
+    Notes
+    -----
+    Images are read with OpenCV (``cv2.imread(path, cv2.IMREAD_UNCHANGED)``) so that 16-bit
+    PNG and TIFF keep their full depth; a frame must be grayscale and, for TIFF, one page.
+    A csv frame is a grid of numbers, one image row per line, without a header.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (folder / "frame.csv").write_text("0, 1, 2\n3, 4, 5\n")
+    >>> read_frame(folder / "frame.csv")
+    array([[0., 1., 2.],
+           [3., 4., 5.]])
+    """
+    path = check_file(path)
+    suffix = path.suffix.lower()
+    if suffix not in _FRAME_SUFFIXES:
+        raise ValueError(f"{path}: unknown frame format {suffix!r}; use one of {_FRAME_SUFFIXES}")
+    if suffix == ".npy":
+        frame = _load_npy(path)
+    elif suffix == ".npz":
+        frame = _pick(path, _load_npz(path), key)[1]
+    elif suffix == ".csv":
+        table = read_numeric_table(path)
+        if table.header is not None:
+            if any(name.lower() in _TIME_COLUMNS for name in table.header):
+                raise ValueError(f"{path}: has a time column; read it with `read_sequence`")
+            raise ValueError(f"{path}, line 1: a frame csv has no header, got {table.header}")
+        frame = table.values
+    else:
+        frame = _read_image(path)
+    frame = _finite(path, frame, "the frame")
+    if frame.ndim != 2:
+        raise ValueError(f"{path}: a frame must be 2-D, got shape {frame.shape}")
+    return frame
+
+
+def _check_time(path: Path, time: np.ndarray, lines: np.ndarray | None = None) -> None:
+    steps = np.diff(time)
+    if np.any(steps < 0):
+        index = int(np.argmax(steps < 0)) + 1
+        where = f"line {lines[index]}" if lines is not None else f"step {index}"
+        raise ValueError(
+            f"{path}, {where}: time goes backwards ({time[index - 1]:g} -> " f"{time[index]:g})"
+        )
+
+
+def read_sequence(
+    path: str | os.PathLike[str],
+    *,
+    time_scale: float = 1.0,
+    key: str = "readings",
+) -> TactileSequence:
+    r"""Read readings over time from a .csv (with a time column) or an .npz file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A csv whose header has a ``timestamp`` (or ``time``) column and one column per
+        channel, one row per time step; or an npz holding ``time`` (n_steps,) and the array
+        named `key` (n_steps, ...).
+    time_scale : float
+        Seconds per unit of the file's time values (1e-3 for milliseconds), > 0.
+    key : str
+        Name of the readings array in an npz archive.
+
+    Returns
+    -------
+    TactileSequence
+        `time` in seconds (as stored times `time_scale`), readings as float64.
+
+    Raises
+    ------
+    FileNotFoundError
+        When `path` does not exist.
+    ValueError
+        Naming the file and line when the csv has no time column, is empty, truncated,
+        ragged or non-numeric; when time goes backwards; when the npz lacks ``time`` or
+        `key`, or their lengths differ.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (folder / "log.csv").write_text("timestamp, a, b\n0, 1, 2\n20, 3, 4\n")
+    >>> sequence = read_sequence(folder / "log.csv", time_scale=1e-3)
+    >>> sequence.time, sequence.channel_names
+    (array([0.  , 0.02]), ('a', 'b'))
+    >>> sequence.readings
+    array([[1., 2.],
+           [3., 4.]])
+    """
+    time_scale = check_positive("time_scale", time_scale)
+    path = check_file(path)
+    suffix = path.suffix.lower()
+    if suffix == ".csv":
+        table = read_numeric_table(path, header=True)
+        lowered = [name.lower() for name in table.header or ()]
+        column = next((lowered.index(name) for name in _TIME_COLUMNS if name in lowered), None)
+        if column is None:
+            raise ValueError(f"{path}, line 1: no 'timestamp' column in the header")
+        if table.values.shape[1] < 2:
+            raise ValueError(f"{path}, line 1: no reading column beside the time column")
+        time = table.values[:, column] * time_scale
+        _check_time(path, time, table.line_numbers)
+        readings = np.delete(table.values, column, axis=1)
+        names = tuple(name for index, name in enumerate(table.header or ()) if index != column)
+        return TactileSequence(time, readings, names)
+    if suffix == ".npz":
+        arrays = _load_npz(path)
+        if "time" not in arrays:
+            raise ValueError(f"{path}: no array named 'time'; the file holds: {sorted(arrays)}")
+        time = _finite(path, arrays["time"], "'time'") * time_scale
+        readings = _finite(path, _pick(path, arrays, key)[1], repr(key))
+        if time.ndim != 1 or readings.ndim < 2 or readings.shape[0] != time.shape[0]:
+            raise ValueError(
+                f"{path}: 'time' {time.shape} and {key!r} {readings.shape} must be (n_steps,) "
+                "and (n_steps, ...)"
+            )
+        _check_time(path, time)
+        return TactileSequence(time, readings)
+    raise ValueError(f"{path}: unknown sequence format {suffix!r}; use .csv or .npz")

@@ -1,0 +1,124 @@
+"""``taxel texture fit`` and ``taxel texture classify`` on small synthetic recordings."""
+
+import json
+
+import numpy as np
+import pytest
+
+from taxel.active import TextureClassifier
+from taxel.cli import main
+
+HEADER = "timestamp, proximity1, proximity2, " + ", ".join(f"channel{i}" for i in range(1, 17))
+PERIODS = {"Ribbed": 0.02, "Coarse": 0.06}  # spatial period of each fake fabric [m]
+
+
+def _recording(path, period, velocity, seed):
+    """A FabricSlide-like csv: 16 taxels over a grating of `period`, 35 Hz, 0.3 m travel."""
+    rng = np.random.default_rng(seed)
+    time = np.arange(0.0, 0.3 / abs(velocity), 1 / 35.0)
+    position = velocity * time
+    phase = np.linspace(0, 2, 16)
+    waves = 6 * np.sin(2 * np.pi * position[:, None] / period + phase)
+    readings = np.round(120 + waves + rng.normal(0, 1.0, waves.shape))
+    stamps = np.round(1000 + 1000 * time).astype(int)
+    rows = [
+        f"{stamp}, 0, 65535, " + ", ".join(str(int(value)) for value in row)
+        for stamp, row in zip(stamps, readings, strict=True)
+    ]
+    path.write_text("\n".join([HEADER, *rows]) + "\n")
+    return path
+
+
+@pytest.fixture
+def folders(tmp_path):
+    train, test = tmp_path / "train", tmp_path / "test"
+    train.mkdir()
+    test.mkdir()
+    seed = 0
+    for fabric, period in PERIODS.items():
+        for velocity in (-20, 20, 100):
+            seed += 1
+            _recording(
+                train / f"{fabric}_F150_V{velocity}mmps_0.csv", period, velocity / 1e3, seed
+            )
+        seed += 1
+        _recording(test / f"{fabric}_F150_V-50mmps_1.csv", period, -0.05, seed)
+    return train, test
+
+
+def test_fit_then_classify(folders, tmp_path, capsys):
+    train, test = folders
+    model_path = tmp_path / "model.json"
+    assert main(["texture", "fit", str(train), "--out", str(model_path)]) == 0
+    assert "fitted 6 recordings of 2 classes (Coarse 3, Ribbed 3)" in capsys.readouterr().out
+    model = TextureClassifier.load(model_path)
+    assert model.classes == ("Coarse", "Ribbed")
+    assert model.settings["reader"] == "fabricslide"
+
+    files = sorted(str(path) for path in test.iterdir())
+    assert main(["texture", "classify", *files, "--model", str(model_path)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines == [f"{files[0]}\tCoarse", f"{files[1]}\tRibbed"]
+
+    assert main(["texture", "classify", *files, "--model", str(model_path), "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert rows == [
+        {"file": files[0], "predicted": "Coarse"},
+        {"file": files[1], "predicted": "Ribbed"},
+    ]
+
+
+def test_fit_refuses_to_overwrite_unless_forced(folders, tmp_path, capsys):
+    train, _ = folders
+    model_path = tmp_path / "model.json"
+    model_path.write_text("keep me")
+    assert main(["texture", "fit", str(train), "--out", str(model_path)]) == 2
+    error = capsys.readouterr().err
+    assert error == f"taxel texture: error: {model_path} exists; pass --force to overwrite it\n"
+    assert model_path.read_text() == "keep me"
+    assert main(["texture", "fit", str(train), "--out", str(model_path), "--force"]) == 0
+    assert TextureClassifier.load(model_path).n_neighbors == 1
+
+
+def _one_line_error(capsys):
+    captured = capsys.readouterr()
+    assert captured.err.count("\n") == 1 and "Traceback" not in captured.err
+    return captured.err
+
+
+def test_errors_are_one_line(folders, tmp_path, capsys):
+    train, test = folders
+    model_path = tmp_path / "model.json"
+    assert main(["texture", "fit", str(tmp_path / "absent"), "--out", str(model_path)]) == 2
+    assert "no such directory" in _one_line_error(capsys)
+    with pytest.raises(SystemExit) as stop:  # argparse's own usage errors
+        main(["texture", "fit", str(train), "--out", str(model_path), "--neighbors", "0"])
+    assert stop.value.code == 2
+    assert "--neighbors: must be >= 1, got 0" in _one_line_error(capsys)
+
+    main(["texture", "fit", str(train), "--out", str(model_path)])
+    capsys.readouterr()
+    broken = test / "Ribbed_F150_V-50mmps_2.csv"
+    broken.write_text(HEADER + "\n1000, 0, 65535, 1, 2\n")
+    code = main(["texture", "classify", str(broken), "--model", str(model_path)])
+    assert code == 2
+    assert "Ribbed_F150_V-50mmps_2.csv, line 2: ragged row: 5 fields" in _one_line_error(capsys)
+    code = main(["texture", "classify", str(broken), "--model", str(tmp_path / "none.json")])
+    assert code == 2
+    assert "no such file" in _one_line_error(capsys)
+    not_a_model = tmp_path / "bad.json"
+    not_a_model.write_text("[1, 2]")
+    code = main(["texture", "classify", str(broken), "--model", str(not_a_model)])
+    assert code == 2
+    assert "not a texture classifier" in _one_line_error(capsys)
+
+
+def test_usage_errors_exit_2(capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(["texture"])
+    assert stop.value.code == 2
+    assert "required: ACTION" in _one_line_error(capsys)
+    with pytest.raises(SystemExit) as stop:
+        main(["texture", "classify", "x.csv"])
+    assert stop.value.code == 2
+    assert "--model" in _one_line_error(capsys)

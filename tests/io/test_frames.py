@@ -1,0 +1,179 @@
+"""Frame and sequence readers: round trips for every format, and every kind of bad file."""
+
+import cv2
+import numpy as np
+import pytest
+
+from taxel.io import TactileSequence, read_frame, read_sequence
+
+GRID = np.arange(12, dtype=np.float64).reshape(3, 4) * 7.0
+
+
+def test_npy_round_trip(tmp_path):
+    np.save(tmp_path / "frame.npy", GRID.astype(np.int16))
+    frame = read_frame(tmp_path / "frame.npy")
+    assert frame.dtype == np.float64
+    np.testing.assert_array_equal(frame, GRID)
+
+
+def test_npz_single_array_and_key(tmp_path):
+    np.savez(tmp_path / "one.npz", pressure=GRID)
+    np.testing.assert_array_equal(read_frame(tmp_path / "one.npz"), GRID)
+    np.savez(tmp_path / "two.npz", first=GRID, second=GRID + 1)
+    np.testing.assert_array_equal(read_frame(tmp_path / "two.npz", key="second"), GRID + 1)
+
+
+def test_npz_ambiguous_or_missing_key(tmp_path):
+    np.savez(tmp_path / "two.npz", first=GRID, second=GRID + 1)
+    with pytest.raises(ValueError, match=r"two\.npz: holds 2 arrays \(first, second\)"):
+        read_frame(tmp_path / "two.npz")
+    with pytest.raises(ValueError, match="no array named 'third'; the file holds: first, second"):
+        read_frame(tmp_path / "two.npz", key="third")
+
+
+@pytest.mark.parametrize("suffix", [".png", ".tif"])
+@pytest.mark.parametrize("dtype", [np.uint8, np.uint16])
+def test_image_round_trip_keeps_bit_depth(tmp_path, suffix, dtype):
+    top = np.iinfo(dtype).max
+    image = np.array([[0, 1, 2], [top - 2, top - 1, top]], dtype=dtype)
+    path = tmp_path / f"frame{suffix}"
+    assert cv2.imwrite(str(path), image)
+    frame = read_frame(path)
+    np.testing.assert_array_equal(frame, image.astype(np.float64))
+    assert frame.max() == top
+
+
+def test_colour_image_is_refused(tmp_path):
+    path = tmp_path / "colour.png"
+    cv2.imwrite(str(path), np.zeros((4, 5, 3), np.uint8))
+    with pytest.raises(ValueError, match="must be a grayscale image, got 3 channels"):
+        read_frame(path)
+
+
+def test_multipage_tif_is_refused(tmp_path):
+    path = tmp_path / "pages.tif"
+    cv2.imwritemulti(str(path), [np.zeros((2, 2), np.uint8)] * 2)
+    with pytest.raises(ValueError, match="holds 2 pages"):
+        read_frame(path)
+
+
+@pytest.mark.parametrize("suffix", [".png", ".tif", ".npy", ".npz"])
+def test_truncated_binary_files(tmp_path, suffix):
+    full = tmp_path / f"full{suffix}"
+    if suffix in (".png", ".tif"):
+        cv2.imwrite(str(full), np.full((20, 20), 9, np.uint8))
+    elif suffix == ".npy":
+        np.save(full, GRID)
+    else:
+        np.savez(full, frame=GRID)
+    cut = tmp_path / f"cut{suffix}"
+    cut.write_bytes(full.read_bytes()[: len(full.read_bytes()) // 3])
+    with pytest.raises(ValueError, match=rf"cut\{suffix}"):
+        read_frame(cut)
+
+
+def test_csv_grid_round_trip(tmp_path):
+    path = tmp_path / "grid.csv"
+    np.savetxt(path, GRID, delimiter=",")
+    np.testing.assert_array_equal(read_frame(path), GRID)
+
+
+def test_missing_file_is_named(tmp_path):
+    with pytest.raises(FileNotFoundError, match=r"no such file: .*absent\.npy"):
+        read_frame(tmp_path / "absent.npy")
+
+
+def test_unknown_suffix(tmp_path):
+    (tmp_path / "frame.bmpx").write_bytes(b"12")
+    with pytest.raises(ValueError, match="unknown frame format '.bmpx'"):
+        read_frame(tmp_path / "frame.bmpx")
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        ("", r"empty\.csv: the file is empty"),
+        ("\n  \n", r"empty\.csv: the file is empty"),
+        ("1, 2, 3\n4, 5, 6\n7, 8", r"empty\.csv, line 3: truncated row: 2 fields, expected 3"),
+        ("1, 2, 3\n4, 5\n7, 8, 9\n", r"empty\.csv, line 2: ragged row: 2 fields, expected 3"),
+        ("1, 2, 3\n4, x, 6\n", r"empty\.csv, line 2: not a number: 'x'"),
+        ("1, 2, 3\n4, , 6\n", r"empty\.csv, line 2: empty field"),
+        ("1, 2, 3\n4, nan, 6\n", r"empty\.csv, line 2: NaN or infinite value"),
+        ("a, b, c\n1, 2, 3\n", r"empty\.csv, line 1: a frame csv has no header"),
+        ("timestamp, b\n1, 2\n", r"has a time column; read it with `read_sequence`"),
+    ],
+)
+def test_bad_csv_frames_name_file_and_line(tmp_path, content, message):
+    path = tmp_path / "empty.csv"
+    path.write_text(content)
+    with pytest.raises(ValueError, match=message):
+        read_frame(path)
+
+
+def test_binary_garbage_csv(tmp_path):
+    path = tmp_path / "garbage.csv"
+    path.write_bytes(b"\xff\xfe\x00\x81")
+    with pytest.raises(ValueError, match="not a text file"):
+        read_frame(path)
+
+
+def test_npy_that_is_not_2d_or_numeric(tmp_path):
+    np.save(tmp_path / "cube.npy", np.zeros((2, 2, 2)))
+    with pytest.raises(ValueError, match=r"must be 2-D, got shape \(2, 2, 2\)"):
+        read_frame(tmp_path / "cube.npy")
+    np.save(tmp_path / "text.npy", np.array([["a", "b"]]))
+    with pytest.raises(ValueError, match="holds <U1 data, not numbers"):
+        read_frame(tmp_path / "text.npy")
+    np.save(tmp_path / "hole.npy", np.array([[1.0, np.inf]]))
+    with pytest.raises(ValueError, match="1 NaN or infinite value"):
+        read_frame(tmp_path / "hole.npy")
+
+
+def test_csv_sequence_with_timestamp(tmp_path):
+    path = tmp_path / "log.csv"
+    path.write_text("timestamp, left, right\n100, 1, 2\n128, 3, 4\n156, 5, 6\n")
+    sequence = read_sequence(path, time_scale=1e-3)
+    assert isinstance(sequence, TactileSequence)
+    np.testing.assert_allclose(sequence.time, [0.1, 0.128, 0.156])
+    np.testing.assert_array_equal(sequence.readings, [[1, 2], [3, 4], [5, 6]])
+    assert sequence.channel_names == ("left", "right")
+    assert sequence.n_steps == 3
+
+
+def test_npz_sequence_round_trip(tmp_path):
+    frames = np.arange(24.0).reshape(2, 3, 4)
+    np.savez(tmp_path / "movie.npz", time=[0.0, 0.01], readings=frames)
+    sequence = read_sequence(tmp_path / "movie.npz")
+    np.testing.assert_array_equal(sequence.readings, frames)
+    np.testing.assert_array_equal(sequence.time, [0.0, 0.01])
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        ("a, b\n1, 2\n", r"line 1: no 'timestamp' column"),
+        ("timestamp\n1\n", r"line 1: no reading column beside the time column"),
+        ("timestamp, a\n", r"line 1: a header but no data rows"),
+        ("timestamp, a\n5, 1\n4, 2\n", r"line 3: time goes backwards \(5 -> 4\)"),
+        ("timestamp, a\n5, 1\n6, 2, 3\n", r"line 3: ragged row: 3 fields, expected 2"),
+        ("timestamp, a\n5, 1\n6, 2\n7,", r"line 4: truncated row: empty field"),
+    ],
+)
+def test_bad_csv_sequences(tmp_path, content, message):
+    path = tmp_path / "log.csv"
+    path.write_text(content)
+    with pytest.raises(ValueError, match=message):
+        read_sequence(path)
+
+
+def test_bad_npz_sequences(tmp_path):
+    np.savez(tmp_path / "notime.npz", readings=np.zeros((2, 3)))
+    with pytest.raises(ValueError, match="no array named 'time'"):
+        read_sequence(tmp_path / "notime.npz")
+    np.savez(tmp_path / "short.npz", time=[0.0], readings=np.zeros((2, 3)))
+    with pytest.raises(ValueError, match=r"'time' \(1,\) and 'readings' \(2, 3\)"):
+        read_sequence(tmp_path / "short.npz")
+    with pytest.raises(ValueError, match="`time_scale` must be > 0"):
+        read_sequence(tmp_path / "short.npz", time_scale=0)
+    with pytest.raises(FileNotFoundError, match="absent.csv"):
+        read_sequence(tmp_path / "absent.csv")

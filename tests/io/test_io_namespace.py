@@ -1,0 +1,18 @@
+"""The public namespace of taxel.io is pinned: a change here is an API change."""
+
+import taxel.io
+
+
+def test_public_names():
+    assert sorted(taxel.io.__all__) == [
+        "CPM_FINGER",
+        "FabricSlideRecording",
+        "TactileSequence",
+        "list_fabricslide_files",
+        "parse_fabricslide_name",
+        "read_fabricslide",
+        "read_frame",
+        "read_sequence",
+    ]
+    for name in taxel.io.__all__:
+        assert name in taxel.io.__doc__
