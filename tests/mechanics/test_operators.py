@@ -138,3 +138,22 @@ def test_stress_transmits_a_wide_load_undiminished():
         depth_stress_operator((64, 64), 0.25e-3, 0.5e-3, RUBBER, thickness=1e-3),
     ):
         assert np.allclose(operator.apply(load)[centre], -1e4, rtol=2e-3)
+
+
+def test_inplane_stress_difference_of_a_small_patch_is_boussinesq():
+    from taxel.mechanics import inplane_stress_difference
+
+    nu, depth, spacing = 0.3, 1e-3, 0.05e-3
+    load = np.zeros((256, 256))
+    load[128, 128] = 1.0 / spacing**2  # 1 N on one cell
+    field = inplane_stress_difference(load, spacing, depth, ElasticMaterial(1e6, nu), padding=4)
+    for cells in (10, 20, 40):
+        r = cells * spacing
+        rho = np.hypot(r, depth)
+        radial = ((1 - 2 * nu) / r**2 * (1 - depth / rho) - 3 * depth * r**2 / rho**5) / (
+            2 * np.pi
+        )
+        hoop = -(1 - 2 * nu) * (1 / r**2 * (1 - depth / rho) - depth / rho**3) / (2 * np.pi)
+        # tau_r_theta = 0 by symmetry: the principal difference is |sigma_r - sigma_theta|
+        assert field[128, 128 + cells] == pytest.approx(abs(radial - hoop), rel=2e-3)
+        assert field[128 + cells, 128] == pytest.approx(abs(radial - hoop), rel=2e-3)

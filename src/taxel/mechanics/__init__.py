@@ -14,6 +14,8 @@ Fourier transfer functions (half-space, and a layer bonded to a rigid base)
 Grid operators (with adjoints; periodic or zero-padded linear convolution)
     ConvolutionOperator, surface_displacement_operator, depth_strain_operator,
     depth_stress_operator
+In-plane stress at depth (photoelasticity)
+    inplane_stress_difference
 Closed-form contacts
     hertz_sphere, hertz_cylinder, flat_punch
 Contact with unknown contact area
@@ -42,6 +44,7 @@ from taxel.mechanics._hertz import (
     hertz_sphere,
 )
 from taxel.mechanics._indenter_base import Indenter, grid_coordinates
+from taxel.mechanics._inplane import inplane_stress_difference
 from taxel.mechanics._indenters import (
     BoxEdge,
     CanRim,
@@ -111,6 +114,7 @@ __all__ = [
     "halfspace_stress_transfer",
     "hertz_cylinder",
     "hertz_sphere",
+    "inplane_stress_difference",
     "layer_displacement_transfer",
     "layer_strain_transfer",
     "layer_stress_transfer",

@@ -100,8 +100,15 @@ class Readout:
             if isinstance(self.bits, bool) or not isinstance(self.bits, int | np.integer):
                 raise TypeError(f"`bits` must be an integer or None, got {self.bits!r}")
             check_range("bits", self.bits, 1, 24)
-        for name in ("noise", "multiplicative_noise", "gain_spread", "offset_spread",
-                     "hysteresis", "creep", "drift_rate"):
+        for name in (
+            "noise",
+            "multiplicative_noise",
+            "gain_spread",
+            "offset_spread",
+            "hysteresis",
+            "creep",
+            "drift_rate",
+        ):
             check_positive(name, getattr(self, name), allow_zero=True)
         for name in ("dead", "stuck", "saturated", "crosstalk"):
             check_range(name, getattr(self, name), 0.0, 1.0, high_inclusive=False)
