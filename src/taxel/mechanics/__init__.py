@@ -44,7 +44,6 @@ from taxel.mechanics._hertz import (
     hertz_sphere,
 )
 from taxel.mechanics._indenter_base import Indenter, grid_coordinates
-from taxel.mechanics._inplane import inplane_stress_difference
 from taxel.mechanics._indenters import (
     BoxEdge,
     CanRim,
@@ -55,6 +54,7 @@ from taxel.mechanics._indenters import (
     Washer,
 )
 from taxel.mechanics._indenters_plates import BoxCorner, HeightMap, PlateWithHole, SlottedPlate
+from taxel.mechanics._inplane import inplane_stress_difference
 from taxel.mechanics._library import INDENTER_NAMES, describe_indenters, make_indenter
 from taxel.mechanics._materials import ElasticMaterial, effective_modulus
 from taxel.mechanics._operators import (

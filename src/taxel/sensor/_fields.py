@@ -8,11 +8,11 @@ from functools import lru_cache
 import numpy as np
 
 from taxel.mechanics import (
-    ContactResult,
     ConvolutionOperator,
     ElasticMaterial,
     depth_strain_operator,
     depth_stress_operator,
+    surface_displacement_operator,
 )
 from taxel.sensor._cover import Cover
 from taxel.sensor._geometry import LoadGrid
@@ -65,19 +65,37 @@ def depth_operators(
     )
 
 
+@lru_cache(maxsize=16)
+def _displacement_operator(
+    shape: tuple[int, int],
+    spacing: tuple[float, float],
+    material: ElasticMaterial,
+    thickness: float | None,
+) -> ConvolutionOperator:
+    return surface_displacement_operator(shape, spacing, material, thickness=thickness)
+
+
 def taxel_fields(
-    contact: ContactResult, grid: LoadGrid, cover: Cover, *, need: tuple[str, ...] = FIELD_NAMES
+    pressure: np.ndarray,
+    grid: LoadGrid,
+    cover: Cover,
+    *,
+    displacement: np.ndarray | None = None,
+    need: tuple[str, ...] = FIELD_NAMES,
 ) -> TaxelFields:
-    """Average the fields of a solved contact over each taxel's cell.
+    """Average the mechanical fields of a surface pressure over each taxel's cell.
 
     Parameters
     ----------
-    contact : ContactResult
-        A contact solved on `grid` (same shape and spacing).
+    pressure : numpy.ndarray
+        Surface pressure on the sensor's load grid [Pa] (e.g. ``ContactResult.pressure``).
     grid : LoadGrid
         The sensor's load grid.
     cover : Cover
         The sensor's cover.
+    displacement : numpy.ndarray, optional
+        Surface displacement on the load grid [m] if already known (a contact solve gives
+        it); computed from the pressure when needed and not given.
     need : tuple of str
         Fields to compute; the others are returned as zeros (saves a convolution each).
 
@@ -85,20 +103,22 @@ def taxel_fields(
     -------
     TaxelFields
     """
-    if contact.pressure.shape != grid.shape:
+    if pressure.shape != grid.shape:
         raise ValueError(
-            f"`contact` must be solved on the sensor's load grid {grid.shape}, "
-            f"got {contact.pressure.shape}"
+            f"`pressure` must be on the sensor's load grid {grid.shape}, got {pressure.shape}"
         )
-    rows, cols = grid.geometry.shape
-    zeros = np.zeros((rows, cols))
+    zeros = np.zeros(grid.geometry.shape)
     stress_operator, strain_operator = depth_operators(
         grid.shape, grid.spacing, cover.depth, cover.material, cover.thickness
     )
-    pressure = contact.pressure
+    if "displacement" in need and displacement is None:
+        operator = _displacement_operator(
+            grid.shape, grid.spacing, cover.material, cover.thickness
+        )
+        displacement = operator.apply(pressure)
     return TaxelFields(
         pressure=grid.taxel_means(pressure) if "pressure" in need else zeros,
         stress=grid.taxel_means(stress_operator.apply(pressure)) if "stress" in need else zeros,
         strain=grid.taxel_means(strain_operator.apply(pressure)) if "strain" in need else zeros,
-        displacement=(grid.taxel_means(contact.displacement) if "displacement" in need else zeros),
+        displacement=grid.taxel_means(displacement) if "displacement" in need else zeros,
     )

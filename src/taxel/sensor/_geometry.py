@@ -9,7 +9,7 @@ import numpy as np
 
 from taxel._validation import check_choice, check_positive
 
-__all__ = ["DENSITY_CLASSES", "ArrayGeometry", "density_class"]
+__all__ = ["DENSITY_CLASSES", "ArrayGeometry", "LoadGrid", "density_class"]
 
 LAYOUTS = ("square", "rectangular", "hexagonal")
 

@@ -115,6 +115,11 @@ class Readout:
         check_positive("creep_time", self.creep_time)
         check_finite("temperature_coefficient", self.temperature_coefficient)
 
+    @property
+    def is_identity(self) -> bool:
+        """True when the electronics change nothing (no ADC and every non-ideality off)."""
+        return self == Readout(bits=None, unit_seed=self.unit_seed)
+
     def ideal(self) -> Readout:
         """The same electronics with every non-ideality off (the ADC stays)."""
         return Readout(bits=self.bits, unit_seed=self.unit_seed)
@@ -165,6 +170,8 @@ class ReadoutChain:
     def apply(self, signal: Any, *, rng: Any = None, temperature: float | None = None) -> Any:
         """The static chain on a signal of shape (..., *shape); noise only with `rng`."""
         readout = self.readout
+        if readout.is_identity:
+            return np.asarray(signal)
         y = np.asarray(signal, dtype=float)
         if temperature is not None and readout.temperature_coefficient:
             y = temperature_dependence(

@@ -1,0 +1,32 @@
+"""Tactile array sensors: geometry, cover, transducer and readout, frame by frame.
+
+Sensor model
+    TactileSensor, SensorFrame, ArrayGeometry, LoadGrid, Cover, Readout, ReadoutChain,
+    TaxelFields, taxel_fields, density_class, DENSITY_CLASSES
+Presets
+    make_sensor, PRESET_NAMES
+"""
+
+from taxel.sensor._cover import Cover
+from taxel.sensor._fields import FIELD_NAMES, TaxelFields, taxel_fields
+from taxel.sensor._geometry import DENSITY_CLASSES, ArrayGeometry, LoadGrid, density_class
+from taxel.sensor._presets import PRESET_NAMES, make_sensor
+from taxel.sensor._readout import Readout, ReadoutChain
+from taxel.sensor._sensor import SensorFrame, TactileSensor
+
+__all__ = [
+    "DENSITY_CLASSES",
+    "FIELD_NAMES",
+    "PRESET_NAMES",
+    "ArrayGeometry",
+    "Cover",
+    "LoadGrid",
+    "Readout",
+    "ReadoutChain",
+    "SensorFrame",
+    "TactileSensor",
+    "TaxelFields",
+    "density_class",
+    "make_sensor",
+    "taxel_fields",
+]

@@ -1,0 +1,331 @@
+"""A tactile array sensor: cover mechanics -> transducer -> readout, frame by frame."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+
+from taxel._validation import as_finite_array, check_positive
+from taxel.mechanics import (
+    ContactResult,
+    ElasticMaterial,
+    Indenter,
+    inplane_stress_difference,
+    solve_contact,
+)
+from taxel.sensor._cover import Cover
+from taxel.sensor._fields import TaxelFields, taxel_fields
+from taxel.sensor._geometry import ArrayGeometry, LoadGrid
+from taxel.sensor._readout import Readout, ReadoutChain
+from taxel.transducers import Transducer, add_drift, creep, play_hysteresis
+
+__all__ = ["SensorFrame", "TactileSensor"]
+
+# what the sensing element feels, for each quantity a transducer may sense
+_FIELD_OF_QUANTITY = {
+    "pressure": "stress",  # a cell under the cover is pressed by -sigma_z at its depth
+    "stress": "stress",
+    "strain": "strain",
+    "displacement": "displacement",
+    "stress_difference": "pressure",  # computed from the surface pressure, see below
+}
+_DYNAMIC_QUANTITIES = ("stress",)  # piezoelectric: only changes are seen
+
+
+@dataclass(frozen=True)
+class SensorFrame:
+    """One frame of a sensor, with what produced it.
+
+    Attributes
+    ----------
+    raw : numpy.ndarray
+        What the sensor outputs: ADC codes, camera levels, or volts when there is no ADC.
+    signal : numpy.ndarray
+        The transducer's ideal signal, before the readout electronics.
+    quantity : numpy.ndarray
+        The transducer's input at each taxel (its `quantity`, in its `quantity_unit`).
+    fields : TaxelFields
+        The mechanical fields at each taxel.
+    contact : ContactResult or None
+        The solved contact, when the frame came from pressing an indenter.
+    """
+
+    raw: np.ndarray = field(repr=False)
+    signal: np.ndarray = field(repr=False)
+    quantity: np.ndarray = field(repr=False)
+    fields: TaxelFields = field(repr=False)
+    contact: ContactResult | None = field(default=None, repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class TactileSensor:
+    """A tactile array sensor model (Ellis seed section 1; chapter sections 25.2-25.3).
+
+    Parameters
+    ----------
+    name : str
+        A short name (presets use their preset name).
+    geometry : ArrayGeometry
+        Where the taxels are.
+    cover : Cover
+        The compliant pad and the depth of the sensing elements.
+    transducer : Transducer
+        The transduction technology (see `taxel.transducers`).
+    readout : Readout, optional
+        The electronics: non-idealities and ADC.
+    frame_rate : float, default 100.0
+        Frames per second [Hz].
+    full_scale : float, default 200e3
+        Working range: the largest pressure the sensor is specified for [Pa].
+    oversampling : int, default 1
+        Surface cells per taxel along a side, on which contacts are solved.
+    cell_modulus : float, optional
+        For transducers that sense strain (capacitive): the constrained modulus of the
+        sensing cell's dielectric [Pa], whose strain is sigma_z / cell_modulus. None uses the
+        cover's own strain eps_z at the sensing depth (the chapter's model).
+    description : str
+        One line for reports.
+    """
+
+    name: str
+    geometry: ArrayGeometry
+    cover: Cover
+    transducer: Transducer
+    readout: Readout = field(default_factory=Readout)
+    frame_rate: float = 100.0
+    full_scale: float = 200e3
+    oversampling: int = 1
+    cell_modulus: float | None = None
+    description: str = ""
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.transducer, Transducer):
+            raise TypeError(
+                f"`transducer` must follow the Transducer protocol, got {self.transducer!r}"
+            )
+        if self.transducer.quantity not in _FIELD_OF_QUANTITY:
+            raise ValueError(f"unsupported transducer quantity {self.transducer.quantity!r}")
+        check_positive("frame_rate", self.frame_rate)
+        check_positive("full_scale", self.full_scale)
+        if self.cell_modulus is not None:
+            check_positive("cell_modulus", self.cell_modulus)
+        self.geometry.load_grid(self.oversampling)  # validates the oversampling
+
+    # ----------------------------------------------------------------- geometry and units
+    @property
+    def shape(self) -> tuple[int, int]:
+        """(rows, cols) of taxels."""
+        return self.geometry.shape
+
+    @property
+    def taxel_pitch(self) -> tuple[float, float]:
+        """(row pitch, column pitch) [m]."""
+        return self.geometry.taxel_pitch
+
+    @cached_property
+    def load_grid(self) -> LoadGrid:
+        """The surface cells on which contacts are solved."""
+        return self.geometry.load_grid(self.oversampling)
+
+    @property
+    def quantity(self) -> str:
+        """The physical quantity the transducer senses."""
+        return self.transducer.quantity
+
+    @property
+    def is_dynamic(self) -> bool:
+        """True when the sensor sees only changes of load (piezoelectric)."""
+        return self.transducer.quantity in _DYNAMIC_QUANTITIES
+
+    # ------------------------------------------------------------------------- mechanics
+    def press(
+        self,
+        indenter: Indenter,
+        *,
+        normal_force: float | None = None,
+        indentation: float | None = None,
+        position: tuple[float, float] = (0.0, 0.0),
+        angle: float = 0.0,
+        indenter_material: ElasticMaterial | None = None,
+        initial: ContactResult | None = None,
+        rng: Any = None,
+    ) -> SensorFrame:
+        """Press an indenter on the sensor and read one frame.
+
+        Parameters
+        ----------
+        indenter : Indenter
+            What presses (see `taxel.mechanics.make_indenter`).
+        normal_force, indentation : float
+            Force [N] or approach [m]: give one.
+        position, angle
+            Placement of the indenter in the sensor frame [m], [rad].
+        indenter_material : ElasticMaterial, optional
+            An elastic indenter; None for rigid.
+        initial : ContactResult, optional
+            The previous frame's contact, to warm-start the solver.
+        rng : numpy.random.Generator or int, optional
+            Switches the noise on (reproducibly); None gives the noise-free frame.
+
+        Returns
+        -------
+        SensorFrame
+        """
+        x, y = self.load_grid.coordinates()
+        heights = indenter.heights(x, y, position=position, angle=angle)
+        contact = solve_contact(
+            heights,
+            self.load_grid.spacing,
+            self.cover.material,
+            normal_force=normal_force,
+            indentation=indentation,
+            indenter_material=indenter_material,
+            thickness=self.cover.thickness,
+            initial=initial,
+        )
+        return self.frame_from_pressure(
+            contact.pressure, displacement=contact.displacement, rng=rng, contact=contact
+        )
+
+    def fields(self, pressure: Any, *, displacement: np.ndarray | None = None) -> TaxelFields:
+        """Mechanical fields at each taxel for a surface pressure on the load grid [Pa]."""
+        pressure = as_finite_array("pressure", pressure, ndim=2)
+        need = (_FIELD_OF_QUANTITY[self.quantity], "pressure")
+        return taxel_fields(
+            pressure, self.load_grid, self.cover, displacement=displacement, need=need
+        )
+
+    def sensed_quantity(self, pressure: np.ndarray, fields: TaxelFields) -> np.ndarray:
+        """The transducer's input at each taxel, from the fields (and the surface pressure)."""
+        quantity = self.quantity
+        if quantity == "pressure":
+            return np.clip(-fields.stress, 0.0, None)  # a cell cannot be pulled
+        if quantity == "stress":
+            return fields.stress
+        if quantity == "displacement":
+            return fields.displacement
+        if quantity == "strain":
+            if self.cell_modulus is None:
+                return fields.strain
+            return fields.stress / self.cell_modulus
+        # stress_difference: through the photoelastic layer under the cover (half-space model)
+        thickness = self.transducer.layer_thickness
+        nodes, weights = np.polynomial.legendre.leggauss(3)
+        total = np.zeros(self.load_grid.shape)
+        for node, weight in zip(nodes, weights, strict=True):
+            depth = self.cover.depth + (node + 1) / 2 * thickness
+            total += (
+                weight
+                / 2
+                * inplane_stress_difference(
+                    pressure, self.load_grid.spacing, depth, self.cover.material
+                )
+            )
+        return self.load_grid.taxel_means(total)
+
+    # ---------------------------------------------------------------- transducer, readout
+    def respond(self, quantity: Any, *, rng: Any = None) -> np.ndarray:
+        """Ideal transducer signal for one frame of the sensed quantity.
+
+        A dynamic (piezoelectric) sensor responds to the step from rest to `quantity`, read
+        one frame period later.
+        """
+        quantity = np.asarray(quantity, dtype=float)
+        if self.is_dynamic:
+            series = np.stack([np.zeros_like(quantity), quantity], axis=-1)
+            return self.transducer.respond(series, time_step=1.0 / self.frame_rate)[..., -1]
+        if self.transducer.signal_unit == "DN":  # a camera: its own noise when rng is given
+            return self.transducer.respond(quantity, rng=rng)
+        return self.transducer.respond(quantity)
+
+    @cached_property
+    def readout_chain(self) -> ReadoutChain:
+        """The electronics of this unit, bound to its signal range and fixed pattern."""
+        low, high = self.signal_range
+        signal_shape = np.shape(self.respond(np.zeros(self.shape)))
+        return ReadoutChain(self.readout, low, high, signal_shape)
+
+    @cached_property
+    def signal_range(self) -> tuple[float, float]:
+        """(low, high) of the transducer's signal over the working range, with 5 % margin.
+
+        Found by reading the unloaded sensor and a flat plate pressing the whole array at
+        `full_scale`, the same loads a calibration uses.
+        """
+        rest = self._ideal_signal(np.zeros(self.load_grid.shape))
+        loaded = self._ideal_signal(np.full(self.load_grid.shape, self.full_scale))
+        values = np.concatenate([np.ravel(rest), np.ravel(loaded)])
+        if self.quantity == "stress_difference":  # a flat plate makes no fringes
+            values = np.append(values, self.transducer.source_intensity)
+        if self.is_dynamic:  # a step can swing either way before it fades
+            values = np.append(values, -values)
+        low, high = float(values.min()), float(values.max())
+        margin = 0.05 * (high - low) if high > low else 1.0
+        return low - margin, high + margin
+
+    def _ideal_signal(self, pressure: np.ndarray) -> np.ndarray:
+        fields = self.fields(pressure)
+        return np.asarray(self.respond(self.sensed_quantity(pressure, fields)), dtype=float)
+
+    def frame_from_pressure(
+        self,
+        pressure: Any,
+        *,
+        displacement: np.ndarray | None = None,
+        rng: Any = None,
+        contact: ContactResult | None = None,
+        temperature: float | None = None,
+    ) -> SensorFrame:
+        """Read one frame for a surface pressure on the load grid [Pa].
+
+        `rng` switches on the noise (reproducibly); `temperature` [K] applies the readout's
+        temperature coefficient.
+        """
+        pressure = as_finite_array("pressure", pressure, ndim=2)
+        fields = self.fields(pressure, displacement=displacement)
+        quantity = self.sensed_quantity(pressure, fields)
+        generator = None if rng is None else np.random.default_rng(rng)
+        signal = self.respond(quantity, rng=generator)
+        raw = self.readout_chain.apply(signal, rng=generator, temperature=temperature)
+        return SensorFrame(raw, np.asarray(signal, float), quantity, fields, contact)
+
+    def read_sequence(self, quantities: Any, *, rng: Any = None) -> np.ndarray:
+        """Raw frames for a time series of the sensed quantity, shape (frames, ...).
+
+        Applies what acts along time: creep and hysteresis of the cover on the quantity,
+        the transducer's own dynamics (piezoelectric), and baseline drift, then the static
+        readout chain frame by frame.
+        """
+        series = as_finite_array("quantities", quantities)
+        step = 1.0 / self.frame_rate
+        readout = self.readout
+        moved = np.moveaxis(series, 0, -1)  # time along the last axis, as the dynamics expect
+        if readout.creep:
+            moved = creep(
+                moved, step, creep_fraction=readout.creep, time_constant=readout.creep_time
+            )
+        if readout.hysteresis:
+            span = float(np.ptp(moved)) or 1.0
+            moved = play_hysteresis(moved, loop_width=readout.hysteresis * span)
+        if self.is_dynamic:
+            signal = self.transducer.respond(moved, time_step=step)
+        else:
+            signal = np.moveaxis(
+                np.asarray([self.respond(frame) for frame in np.moveaxis(moved, -1, 0)]), 0, -1
+            )
+        generator = None if rng is None else np.random.default_rng(rng)
+        if readout.drift_rate:
+            signal = add_drift(
+                signal, step, rate=readout.drift_rate * self.readout_chain.span, rng=generator
+            )
+        frames = np.moveaxis(signal, -1, 0)
+        return np.asarray([self.readout_chain.apply(frame, rng=generator) for frame in frames])
+
+    # ----------------------------------------------------------------- reporting helpers
+    @property
+    def density_class(self) -> str:
+        """LDTA, MDTA, HDTA or VHDTA (Ellis seed, section 1)."""
+        return self.geometry.density_class

@@ -1,0 +1,101 @@
+"""The sensor model: presets, the mechanics -> transducer -> readout chain, noise switching."""
+
+import numpy as np
+import pytest
+
+from taxel.mechanics import hertz_sphere, make_indenter
+from taxel.sensor import PRESET_NAMES, Readout, make_sensor
+
+
+@pytest.fixture(scope="module")
+def presets():
+    return {name: make_sensor(name) for name in PRESET_NAMES}
+
+
+@pytest.mark.parametrize("name", PRESET_NAMES)
+def test_every_preset_reads_a_press(presets, name):
+    sensor = presets[name]
+    frame = sensor.press(make_indenter("sphere"), normal_force=1.0, rng=0)
+    expected = (sensor.shape[0] + sensor.shape[1],) if name == "microbend16" else sensor.shape
+    assert frame.raw.shape == expected
+    assert np.all(np.isfinite(frame.raw))
+    low, high = sensor.signal_range
+    assert low < high
+    # the same seed gives the same frame; no seed gives the noise-free frame
+    again = sensor.press(make_indenter("sphere"), normal_force=1.0, rng=0)
+    assert np.array_equal(frame.raw, again.raw)
+
+
+def test_vhdta128_is_the_ellis_seed_sensor(presets):
+    sensor = presets["vhdta128"]
+    assert sensor.shape == (128, 128)
+    assert sensor.geometry.extent[0] == pytest.approx(33e-3)
+    assert sensor.density_class == "VHDTA"
+    assert sensor.full_scale == pytest.approx(60 * 6894.757)
+    frame = sensor.press(make_indenter("sphere"), normal_force=12.0, rng=1)
+    assert frame.raw.dtype == np.uint8  # an 8-bit camera image, as in the seed
+    assert frame.raw.min() >= 20 and frame.raw.max() <= 130  # the seed's images: 24 to 120
+
+
+def test_pressure_cells_feel_the_stress_transmitted_to_their_depth(presets):
+    sensor = presets["resistive16"]
+    frame = sensor.press(make_indenter("sphere", radius=5e-3), normal_force=2.0)
+    assert np.allclose(frame.quantity, np.clip(-frame.fields.stress, 0, None))
+    # the total of the stress at depth equals the applied force (equilibrium)
+    cell = np.prod(sensor.taxel_pitch)
+    assert -frame.fields.stress.sum() * cell == pytest.approx(2.0, rel=0.03)
+    assert frame.fields.pressure.sum() * cell == pytest.approx(2.0, rel=1e-6)
+
+
+def test_contact_on_the_sensor_matches_hertz_when_well_resolved():
+    sensor = make_sensor("vhdta128")
+    frame = sensor.press(make_indenter("sphere", radius=6.25e-3), normal_force=1.0)
+    # a 1 mm pad on glass is stiffer than a half-space: the contact is smaller than Hertz's
+    hertz = hertz_sphere(1.0, 6.25e-3, sensor.cover.material.plane_strain_modulus)
+    radius = np.sqrt(frame.contact.contact_area / np.pi)
+    assert 0.5 * hertz.contact_radius < radius < hertz.contact_radius
+    assert frame.contact.converged
+
+
+def test_noise_is_switched_by_rng(presets):
+    sensor = presets["resistive16"]
+    indenter = make_indenter("edge")
+    clean = sensor.press(indenter, normal_force=3.0)
+    noisy = sensor.press(indenter, normal_force=3.0, rng=5)
+    assert not np.array_equal(clean.raw, noisy.raw)
+    assert np.abs(clean.raw.astype(float) - noisy.raw).max() < 50  # a few LSB of 4096
+
+
+def test_dynamic_sensor_sees_only_change(presets):
+    sensor = presets["piezo8x8"]
+    frame = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, 5e4))
+    steps = np.repeat(frame.quantity[None], 2000, axis=0)  # a load held for 2 s at 1 kHz
+    raw = sensor.read_sequence(steps)
+    rest = sensor.readout_chain.apply(sensor.respond(np.zeros(sensor.shape)))
+    # right after the step the output jumps; a second later the held load has faded
+    assert np.abs(raw[0].astype(float) - rest).max() > 100
+    assert np.abs(raw[-1].astype(float) - rest).max() <= 2
+
+
+def test_readout_bits_and_faults():
+    sensor = make_sensor("resistive16")
+    faulty = type(sensor)(**{**sensor.__dict__, "readout": Readout(bits=8, dead=0.1, unit_seed=9)})
+    frame = faulty.press(make_indenter("sphere"), normal_force=2.0)
+    assert frame.raw.max() <= 255
+    dead = faulty.readout_chain.pattern.faults.dead
+    assert dead.sum() == round(0.1 * 256)
+    assert np.all(frame.raw[dead] == 0)
+
+
+def test_bad_sensor_specifications():
+    with pytest.raises(ValueError, match="`name` must be one of vhdta128"):
+        make_sensor("nonexistent")
+    with pytest.raises(ValueError, match="`bits` must lie in \\[1, 24\\]"):
+        Readout(bits=0)
+    with pytest.raises(ValueError, match="`pitch` must be > 0"):
+        from taxel.sensor import ArrayGeometry
+
+        ArrayGeometry(4, 4, 0.0)
+    sensor = make_sensor("resistive16")
+    with pytest.raises(ValueError, match="`frame_rate` must be > 0"):
+        type(sensor)(**{**sensor.__dict__, "frame_rate": 0.0})
