@@ -10,6 +10,7 @@ def test_public_names():
         "DEFAULT_BAND_EDGES",
         "Probe",
         "ProbeReading",
+        "ProcedureStep",
         "ProfileObject",
         "SceneObject",
         "SimulatedFinger",
@@ -20,6 +21,7 @@ def test_public_names():
         "fit_texture_classifier",
         "make_ball",
         "spatial_power_spectrum",
+        "step_from_reading",
         "texture_features",
         "texture_signature",
     ]

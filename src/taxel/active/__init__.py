@@ -2,7 +2,8 @@
 
 Robot side: scene, probe interface, simulated finger
 ----------------------------------------------------
-SceneObject, ProfileObject, Box, make_ball, Probe, ProbeReading, SimulatedFinger
+SceneObject, ProfileObject, Box, make_ball, Probe, ProbeReading, SimulatedFinger,
+ProcedureStep, step_from_reading
 
 Texture from sliding (spatial-frequency signature)
 --------------------------------------------------
@@ -16,6 +17,7 @@ fit_texture_classifier, TextureClassifier, cross_validate_texture, CrossValidati
 
 from taxel.active._finger import SimulatedFinger
 from taxel.active._probe import Probe, ProbeReading
+from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._scene import Box, ProfileObject, SceneObject, make_ball
 from taxel.active._spatial_spectrum import band_power, spatial_power_spectrum
 from taxel.active._texture_classifier import (
@@ -37,6 +39,7 @@ __all__ = [
     "CrossValidation",
     "Probe",
     "ProbeReading",
+    "ProcedureStep",
     "ProfileObject",
     "SceneObject",
     "SimulatedFinger",
@@ -47,6 +50,7 @@ __all__ = [
     "fit_texture_classifier",
     "make_ball",
     "spatial_power_spectrum",
+    "step_from_reading",
     "texture_features",
     "texture_signature",
 ]
