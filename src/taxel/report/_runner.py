@@ -56,7 +56,7 @@ def run_demo(
     out: Path | str,
     *,
     quick: bool = False,
-    experiments: Sequence[ExperimentFunction] = EXPERIMENTS,
+    experiments: Sequence[ExperimentFunction] | None = None,
     progress: bool = True,
 ) -> DemoResult:
     """Run the experiments and write ``report.html`` and ``results.json`` into `out`.
@@ -67,8 +67,8 @@ def run_demo(
         Output folder (created if needed; the two files in it are replaced).
     quick : bool
         Fewer trials, for a fast look.
-    experiments : sequence of callables
-        The experiments to run (default: all of them, in the seeds' order).
+    experiments : sequence of callables, optional
+        The experiments to run (default: `EXPERIMENTS`, all of them in the seeds' order).
     progress : bool
         Show a progress bar on stderr.
 
@@ -77,6 +77,8 @@ def run_demo(
     DemoResult
     """
     folder = _writable_folder(Path(out))
+    if experiments is None:
+        experiments = EXPERIMENTS
     context = DemoContext(quick=quick)
     started = time.perf_counter()
     results: list[Experiment] = []
