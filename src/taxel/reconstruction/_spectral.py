@@ -57,6 +57,13 @@ class Spectrum:
     exact_mask: bool
     load_shape: tuple[int, int]
 
+    norm_squared: float
+    penalty: np.ndarray
+
+    def apply_penalty(self, values: np.ndarray) -> np.ndarray:
+        """M x = L^T L x on the load grid (Neumann boundaries, diagonal in the DCT)."""
+        return _idct(_dct(values) * self.penalty)
+
     def analyze(self, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(beta (B, r), free (B, n_free), unreachable energy (B,)) of frames (B, rows, cols)."""
         raise NotImplementedError
@@ -88,11 +95,12 @@ class FastSpectrum(Spectrum):
         valid = (row_index[:, None] >= 0) & (col_index[None, :] >= 0)
         group = np.where(valid, row_index[:, None] * cols + col_index[None, :], 0)
         penalty = penalty_eigenvalues(self.load_shape, order)
-        self._weight, self._group, self._penalty = weight, group, penalty
+        self._weight, self._group, self.penalty = weight, group, penalty
         self._group_flat = group.ravel()
         self._members_of_mean = np.flatnonzero((group.ravel() == 0) & valid.ravel())
         norm_a = np.bincount(self._group_flat, (weight**2).ravel(), minlength=rows * cols)
-        self.scale = float(norm_a.max() / penalty.max())
+        self.norm_squared = float(norm_a.max())
+        self.scale = self.norm_squared / float(penalty.max())
         free = (penalty == 0) & valid  # only the constant fine mode, which reaches mode 0
         with np.errstate(divide="ignore", invalid="ignore"):
             ratio = np.where(free | ~valid, 0.0, weight**2 / penalty)
@@ -123,13 +131,9 @@ class FastSpectrum(Spectrum):
             fine = full[:, self._group_flat].reshape(batch, *self.load_shape) * self._expansion
         return _idct(fine)
 
-    def apply_penalty(self, values: np.ndarray) -> np.ndarray:
-        """M x = L^T L x on the load grid (Neumann boundaries)."""
-        return _idct(_dct(values) * self._penalty)
-
     def shifted_solve(self, rhs: np.ndarray, alpha: float, beta: float) -> np.ndarray:
         transformed = _dct(rhs)
-        diagonal = alpha * self._penalty + beta
+        diagonal = alpha * self.penalty + beta
         weight = self._weight
         if self._k == 1:
             return _idct(transformed / (weight**2 + diagonal))
@@ -164,9 +168,9 @@ class DenseSpectrum(Spectrum):
         self.count = int(matrix.shape[0])
         self.exact_mask = True
         penalty = penalty_eigenvalues(self.load_shape, order)
-        self._penalty_eigenvalues = penalty
-        norm_a = float(np.linalg.eigvalsh(matrix @ matrix.T)[-1])
-        self.scale = norm_a / float(penalty.max())
+        self.penalty = penalty
+        self.norm_squared = float(np.linalg.eigvalsh(matrix @ matrix.T)[-1])
+        self.scale = self.norm_squared / float(penalty.max())
         cells = matrix.shape[1]
         if order == 0:
             self.n_free = 0
@@ -198,7 +202,7 @@ class DenseSpectrum(Spectrum):
         """M^+ applied to each column (load-grid vectors), through the DCT."""
         cube = columns.T.reshape(-1, *self.load_shape)
         with np.errstate(divide="ignore"):
-            inverse = np.where(self._penalty_eigenvalues > 0, 1 / self._penalty_eigenvalues, 0)
+            inverse = np.where(self.penalty > 0, 1 / self.penalty, 0)
         return _idct(_dct(cube) * inverse).reshape(cube.shape[0], -1).T
 
     def live(self, frames: np.ndarray) -> np.ndarray:

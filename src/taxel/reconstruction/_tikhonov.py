@@ -13,7 +13,7 @@ from taxel.reconstruction._frames import as_frames, parse_regularization, restor
 from taxel.reconstruction._operator import forward_operator
 from taxel.reconstruction._result import ReconstructionResult
 from taxel.reconstruction._spec import as_forward_model_spec
-from taxel.reconstruction._spectral import FastSpectrum, build_spectrum
+from taxel.reconstruction._spectral import build_spectrum
 
 __all__ = ["TikhonovSolver", "check_order", "estimate_noise"]
 
@@ -231,9 +231,7 @@ class TikhonovSolver:
         return pressure, lam, residual, seminorm, noise, curve
 
     def _penalty(self, pressure: np.ndarray) -> np.ndarray:
-        spectrum = self.spectrum
-        assert isinstance(spectrum, FastSpectrum)
-        return spectrum.apply_penalty(pressure)
+        return self.spectrum.apply_penalty(pressure)
 
     def _pcg(self, frame: np.ndarray, live: np.ndarray, lam: float, start: np.ndarray):
         operator, spectrum = self.operator, self.spectrum
