@@ -8,7 +8,8 @@ Fast (reflective model, DCT): fine DCT mode j reaches one coarse mode mu with we
 per coarse mode the problem is min (s - beta)^2 + w s^2 / g with g = sum_j s_j^2 / l_j
 (l_j the penalty eigenvalue), and y_j = s s_j / (l_j g). Dense (any model, small grids):
 with c = A 1 the image of the penalty's null space (constants) and A~ = (I - c c^T/|c|^2) A,
-G = A~ M^+ A~^T = U diag(g) U^T gives the same form (M^+ applied by DCT).
+the SVD of the standard form A~ M^(+1/2) = U diag(sqrt g) V^T gives the same form
+(M^(+1/2) applied by DCT).
 Here c = |A|^2 / |L|^2 makes lambda dimensionless: lambda = 1 weighs the penalty like the
 largest singular value of the data term.
 """
@@ -163,18 +164,20 @@ class DenseSpectrum(Spectrum):
         self.load_shape = spec.load_shape
         self.order = order
         self._live = spec.live_taxels.ravel()
-        matrix = operator.to_matrix()[self._live]
+        full = operator.to_matrix()
+        matrix = full[self._live]
         self._matrix = matrix
         self.count = int(matrix.shape[0])
         self.exact_mask = True
         penalty = penalty_eigenvalues(self.load_shape, order)
         self.penalty = penalty
-        self.norm_squared = float(np.linalg.eigvalsh(matrix @ matrix.T)[-1])
+        # |A| of the whole array: lambda means the same with or without dead taxels
+        self.norm_squared = float(np.linalg.eigvalsh(full @ full.T)[-1])
         self.scale = self.norm_squared / float(penalty.max())
         cells = matrix.shape[1]
         if order == 0:
             self.n_free = 0
-            reduced, projected = matrix, matrix.T
+            reduced = matrix
             self._free_basis = np.zeros((cells, 0))
             self._image_of_mean = np.zeros((self.count, 0))
         else:
@@ -184,26 +187,29 @@ class DenseSpectrum(Spectrum):
             norm = float(np.linalg.norm(image))
             unit = image / norm
             reduced = matrix - np.outer(unit, unit @ matrix)
-            projected = self._pseudo_inverse_penalty(reduced.T)
             self._free_basis = (mean / norm)[:, None]
             self._image_of_mean = unit[:, None]
-        gram = reduced @ projected
-        values, vectors = np.linalg.eigh(0.5 * (gram + gram.T))
-        keep = values > values[-1] * self.count * np.finfo(float).eps * 10
-        g_real, vectors = values[keep], vectors[:, keep]
-        expansion = projected @ vectors / g_real
-        if self.n_free:  # y -> y + (mean) a with a fitting what A y leaves of b along c
+        # standard form K = A~ M^(+1/2): its SVD keeps relative accuracy in sqrt(g), where an
+        # eigen-decomposition of A~ M^+ A~^T would lose the small g below eps * g_max
+        standard = self._penalty_power(reduced.T, -0.5).T if order else reduced
+        vectors, singular, right = np.linalg.svd(standard, full_matrices=False)
+        keep = singular > singular[0] * max(standard.shape) * np.finfo(float).eps
+        singular, vectors, right = singular[keep], vectors[:, keep], right[keep]
+        expansion = right.T / singular
+        if order:
+            expansion = self._penalty_power(expansion, -0.5)
+            # y -> y + (mean) a, with a fitting what A y leaves of b along A 1
             expansion -= self._free_basis @ (self._image_of_mean.T @ (matrix @ expansion))
         self._vectors, self._expansion = vectors, expansion
-        self.g = g_real / self.scale
+        self.g = singular**2 / self.scale
         self._factor_cache: dict[tuple[float, float], tuple] = {}
 
-    def _pseudo_inverse_penalty(self, columns: np.ndarray) -> np.ndarray:
-        """M^+ applied to each column (load-grid vectors), through the DCT."""
+    def _penalty_power(self, columns: np.ndarray, power: float) -> np.ndarray:
+        """(M^+)^(-power) applied to each column (load-grid vectors), through the DCT."""
         cube = columns.T.reshape(-1, *self.load_shape)
         with np.errstate(divide="ignore"):
-            inverse = np.where(self.penalty > 0, 1 / self.penalty, 0)
-        return _idct(_dct(cube) * inverse).reshape(cube.shape[0], -1).T
+            factor = np.where(self.penalty > 0, np.abs(self.penalty) ** power, 0.0)
+        return _idct(_dct(cube) * factor).reshape(cube.shape[0], -1).T
 
     def live(self, frames: np.ndarray) -> np.ndarray:
         """The live readings of frames (B, rows, cols) as (B, count)."""
@@ -213,6 +219,8 @@ class DenseSpectrum(Spectrum):
         data = self.live(frames)
         beta = data @ self._vectors
         free = data @ self._image_of_mean
+        if beta.shape[1] + self.n_free >= self.count:  # the modes span every reading
+            return beta, free, np.zeros(data.shape[0])
         rest = np.einsum("ij,ij->i", data, data) - np.einsum("ij,ij->i", beta, beta)
         rest -= np.einsum("ij,ij->i", free, free)
         return beta, free, np.maximum(rest, 0.0)

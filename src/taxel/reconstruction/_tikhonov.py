@@ -19,7 +19,7 @@ __all__ = ["TikhonovSolver", "check_order", "estimate_noise"]
 
 # dead taxels on a fast (full-array) factorization: imputation sweeps, then exact PCG
 _SWEEPS = 3
-_PCG_TOLERANCE = 1e-9
+_PCG_TOLERANCE = 1e-12
 _PCG_ITERATIONS = 200
 
 
