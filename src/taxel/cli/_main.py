@@ -33,9 +33,9 @@ def _build_parser() -> _Parser:
     )
     parser.add_argument("--version", action="version", version=f"taxel {taxel.__version__}")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    from taxel.cli import _demo
+    from taxel.cli import _demo, _reconstruct
 
-    for module in (_demo,):
+    for module in (_demo, _reconstruct):
         module.register(commands)
     return parser
 
