@@ -100,6 +100,8 @@ class TikhonovSolver:
         self.scan = ParameterScan(
             spectrum.g, spectrum.n_free, spectrum.count, spectrum.scale, truncated=truncated
         )
+        with np.errstate(divide="ignore"):
+            self._inverse_g = np.where(spectrum.g > 0, 1 / spectrum.g, 0.0) / spectrum.scale
 
     @property
     def method(self) -> str:
@@ -190,10 +192,9 @@ class TikhonovSolver:
         factors = self.filter_factors(lam)
         filtered = factors * beta
         pressure = spectrum.synthesize(filtered, free)
-        residual = np.sqrt(np.einsum("ij,ij->i", (1 - factors) ** 2, beta**2) + rest)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            inverse_g = np.where(spectrum.g > 0, 1 / spectrum.g, 0.0)
-        seminorm = np.sqrt(filtered**2 @ inverse_g / spectrum.scale)
+        misfit = beta - filtered
+        residual = np.sqrt(np.einsum("ij,ij->i", misfit, misfit) + rest)
+        seminorm = np.sqrt(np.einsum("ij,ij,j->i", filtered, filtered, self._inverse_g))
         return pressure, lam, residual, seminorm, noise, curve
 
     def _solve_masked(
