@@ -411,7 +411,7 @@ def run(quick: bool = False) -> str:
         "### Errors, Tikhonov order 1 with GCV (worst over seeds)",
         "",
         "Whole map: force and centroid of the entire reconstructed map, which integrates the "
-        "noise of every taxel. Window: of the cells >= 10 % of the peak, grown by one depth d "
+        "noise of every taxel. Window: of the cells >= 10 % of the peak, grown by two depths d "
         "(the contact and its blur), which leaves the noise of the unloaded taxels out.",
         "",
         *_per_load(rows, "gcv", 1),

@@ -163,6 +163,7 @@ class ParameterScan:
         low = min(smallest / 10, 1e-4)  # well-posed problems may want lambda << sqrt(g_min)
         self.log_grid = np.linspace(np.log10(low), 1.0, points)
         self.grid = 10**self.log_grid
+        self._first_meaningful = min(int(np.searchsorted(self.grid, smallest / 10)), points - 3)
         if g.size <= _EXACT_LIMIT:
             self._order = None
             self._starts = None
@@ -193,10 +194,20 @@ class ParameterScan:
             return beta2
         return np.add.reduceat(beta2[:, self._order], self._starts, axis=1)
 
-    def curves(self, beta2: np.ndarray, rest: np.ndarray) -> ParameterCurve:
-        """All curves for frames with squared coefficients beta2 (B, r) and unreachable rest."""
+    def curves(self, beta2: np.ndarray, rest: np.ndarray, *, full: bool = True) -> ParameterCurve:
+        """Curves for frames with squared coefficients beta2 (B, r) and unreachable rest.
+
+        With ``full=False`` only the residual and GCV are computed (the L-curve is NaN),
+        which is what GCV and the discrepancy principle need for a large batch.
+        """
         data = self._compress(beta2).T
         residual = (self._residual_weight @ data).T + rest[:, None]
+        if not full:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                gcv = self.count * residual / (self.count - self.trace) ** 2
+            gcv = np.where(self.count - self.trace > 0.5, gcv, np.inf)
+            missing = np.full_like(residual, np.nan)
+            return ParameterCurve(self.grid, np.sqrt(residual), missing, gcv, missing)
         seminorm = (self._seminorm_weight @ data).T
         with np.errstate(divide="ignore", invalid="ignore"):
             gcv = self.count * residual / (self.count - self.trace) ** 2
@@ -230,6 +241,9 @@ class ParameterScan:
             elif rule == "lcurve":
                 values = curve.curvature[index].copy()
                 values[[0, -1]] = -np.inf  # a corner is interior
+                # well below the smallest mode's transition the curve collapses to a point: its
+                # curvature there is rounding noise, not a corner
+                values[: self._first_meaningful] = -np.inf
                 logs[index] = _parabola_vertex(self.log_grid, values, int(np.argmax(values)))
             else:
                 assert noise is not None

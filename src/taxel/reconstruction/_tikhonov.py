@@ -181,7 +181,8 @@ class TikhonovSolver:
         if rule == "given":
             lam = np.full(frames.shape[0], value)
         else:
-            curve = self.scan.curves(beta**2, rest)
+            full = rule == "lcurve" or frames.shape[0] <= 8  # batches: what the rule needs
+            curve = self.scan.curves(beta**2, rest, full=full)
             if rule == "discrepancy":
                 noise = (
                     np.full(frames.shape[0], noise_level)
