@@ -15,10 +15,11 @@ COVER = ElasticMaterial(1e6, 0.49)
 
 
 def test_presets_hold_the_issue_numbers():
-    assert FORWARD_MODEL_PRESETS == ("vhdta128", "resistive16")
+    assert {"vhdta128", "resistive16"} <= set(FORWARD_MODEL_PRESETS)
     big = forward_model_preset("vhdta128")
     assert big.shape == (128, 128) and big.taxel_pitch == pytest.approx(33e-3 / 128)
-    assert (big.depth, big.thickness, big.full_scale) == (1e-3, 1e-3, 413.7e3)
+    assert (big.depth, big.thickness) == (1e-3, 1e-3)
+    assert big.full_scale == pytest.approx(60 * 6894.757)  # 60 psi, the Ellis seed's range
     assert big.material == ElasticMaterial(0.5e6, 0.49) and big.quantity == "stress"
     small = forward_model_preset("resistive16", oversampling=2)
     assert small.shape == (16, 16) and small.taxel_pitch == 2e-3
@@ -67,5 +68,29 @@ def test_bad_spec(changes, message):
 
 
 def test_unknown_preset():
-    with pytest.raises(ValueError, match="`sensor` must be one of vhdta128, resistive16"):
+    with pytest.raises(
+        ValueError, match="`sensor` must be one of vhdta128, harmon10x20, resistive16"
+    ):
         forward_model_preset("gelsight")
+
+
+def test_spec_follows_any_sensor_and_refuses_fibre_readings():
+    from taxel.reconstruction import spec_from_sensor
+    from taxel.sensor import make_sensor
+
+    capacitive = spec_from_sensor(make_sensor("capacitive4x4"))
+    assert capacitive.quantity == "stress"  # the cell's own modulus: stress at depth
+    assert capacitive.taxel_pitch == 5e-3
+    with pytest.raises(ValueError, match="does not give one reading per taxel"):
+        spec_from_sensor(make_sensor("microbend16"))
+    with pytest.raises(ValueError, match="must be a square array"):
+        spec_from_sensor(
+            make_sensor("harmon10x20").__class__(
+                **{
+                    **make_sensor("harmon10x20").__dict__,
+                    "geometry": make_sensor("harmon10x20").geometry.__class__(
+                        4, 4, 1e-3, layout="hexagonal"
+                    ),
+                }
+            )
+        )

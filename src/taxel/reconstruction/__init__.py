@@ -5,6 +5,7 @@ regularization. Everything here is built once per sensor and reused frame after 
 
 Forward model of a sensor
     ForwardModelSpec, forward_model_preset, FORWARD_MODEL_PRESETS, as_forward_model_spec,
+    spec_from_sensor,
     forward_operator, SensorOperator
 Solvers (class: setup once, then solve frame after frame; function: one call)
     TikhonovSolver (Tikhonov of order 0, 1, 2 and truncated SVD),
@@ -35,6 +36,7 @@ from taxel.reconstruction._spec import (
     ForwardModelSpec,
     as_forward_model_spec,
     forward_model_preset,
+    spec_from_sensor,
 )
 from taxel.reconstruction._tikhonov import TikhonovSolver, estimate_noise
 
@@ -58,4 +60,5 @@ __all__ = [
     "reconstruct",
     "recover_shape",
     "solver_for",
+    "spec_from_sensor",
 ]

@@ -16,6 +16,7 @@ import numpy as np
 
 from taxel._validation import check_choice, check_positive
 from taxel.mechanics import ElasticMaterial
+from taxel.sensor import TactileSensor, make_sensor
 
 __all__ = [
     "FORWARD_MODEL_PRESETS",
@@ -163,42 +164,81 @@ def _as_taxel_list(dead: Any, shape: tuple[int, int]) -> tuple[tuple[int, int], 
     return result
 
 
-# The two configurations of the reconstruction benchmark (issue 4); the sensor presets of
-# `taxel.sensor` are to be built with exactly these numbers.
-_PRESETS: dict[str, dict[str, Any]] = {
-    "vhdta128": {
-        "shape": (128, 128),
-        "taxel_pitch": 33e-3 / 128,
-        "material": ElasticMaterial(0.5e6, 0.49),
-        "depth": 1.0e-3,
-        "thickness": 1.0e-3,
-        "quantity": "stress",
-        "full_scale": 413.7e3,
-    },
-    "resistive16": {
-        "shape": (16, 16),
-        "taxel_pitch": 2.0e-3,
-        "material": ElasticMaterial(1.0e6, 0.49),
-        "depth": 1.5e-3,
-        "thickness": 1.5e-3,
-        "quantity": "stress",
-        "full_scale": 200e3,
-    },
+# quantity the transducer senses -> what a calibrated reading is, for the inverse problem
+_READING = {
+    "pressure": "stress",
+    "stress": "stress",
+    "strain": "strain",
+    "displacement": "displacement",
 }
 
-FORWARD_MODEL_PRESETS: tuple[str, ...] = tuple(_PRESETS)
+
+def spec_from_sensor(sensor: TactileSensor, **changes: Any) -> ForwardModelSpec:
+    """The forward model of a `taxel.sensor.TactileSensor`, with optional changes.
+
+    A calibrated reading of a pressure- or stress-sensing taxel is the pressure felt at its
+    depth, -sigma_z(d) [Pa]; of a strain-sensing one, eps_z(d) (or, when its cell has its
+    own modulus, again the stress at depth); of a displacement-sensing one, u_z [m].
+
+    Raises
+    ------
+    ValueError
+        For sensors whose readings are not one value per taxel of a square array
+        (microbend fibres, photoelastic fringes, rectangular or hexagonal layouts).
+
+    Examples
+    --------
+    >>> from taxel.sensor import make_sensor
+    >>> spec = spec_from_sensor(make_sensor("vhdta128"))
+    >>> spec.shape, round(spec.depth / spec.taxel_pitch, 2), spec.quantity
+    ((128, 128), 3.88, 'stress')
+    """
+    quantity = sensor.quantity
+    geometry = sensor.geometry
+    if quantity not in _READING or sensor.name == "microbend16":
+        raise ValueError(
+            f"`sensor` {sensor.name!r} does not give one reading per taxel of its "
+            f"{quantity!r}; the pressure cannot be reconstructed from it this way"
+        )
+    row_pitch, col_pitch = geometry.taxel_pitch
+    if geometry.layout == "hexagonal" or not np.isclose(row_pitch, col_pitch):
+        raise ValueError(f"`sensor` {sensor.name!r} must be a square array, got {geometry.layout}")
+    reading = _READING[quantity]
+    if quantity == "strain" and sensor.cell_modulus is not None:
+        reading = "stress"
+    fields = {
+        "shape": geometry.shape,
+        "taxel_pitch": col_pitch,
+        "material": sensor.cover.material,
+        "depth": sensor.cover.depth,
+        "thickness": sensor.cover.thickness,
+        "quantity": reading,
+        "full_scale": sensor.full_scale,
+    }
+    return ForwardModelSpec(**(fields | changes))
+
+
+# the sensor presets whose readings can be inverted for a pressure map
+FORWARD_MODEL_PRESETS: tuple[str, ...] = (
+    "vhdta128",
+    "harmon10x20",
+    "resistive16",
+    "capacitive4x4",
+    "piezo8x8",
+    "reflective8x8",
+)
 
 
 def forward_model_preset(name: str, **changes: Any) -> ForwardModelSpec:
-    """The forward model of a named sensor configuration, with optional changes.
+    """The forward model of a preset sensor of `taxel.sensor`, with optional changes.
 
     Parameters
     ----------
-    name : {"vhdta128", "resistive16"}
-        "vhdta128": 128 x 128 taxels at 33/128 mm under a 1 mm cover (E = 0.5 MPa,
-        nu = 0.49) bonded to glass, stress sensed at the interface, full scale 413.7 kPa.
-        "resistive16": 16 x 16 taxels at 2 mm under a 1.5 mm cover (E = 1 MPa, nu = 0.49)
-        on a rigid backing, stress sensed at the base, full scale 200 kPa.
+    name : str
+        One of `FORWARD_MODEL_PRESETS`, e.g. "vhdta128" (128 x 128 taxels at 33/128 mm
+        under a 1 mm cover, E = 0.5 MPa, nu = 0.49, bonded to glass, stress sensed at the
+        interface, full scale 413.7 kPa) or "resistive16" (16 x 16 taxels at 2 mm under a
+        1.5 mm cover, E = 1 MPa, nu = 0.49, stress sensed at the base, full scale 200 kPa).
     **changes
         Fields of `ForwardModelSpec` to override (``oversampling``, ``dead_taxels``, ...).
 
@@ -213,13 +253,14 @@ def forward_model_preset(name: str, **changes: Any) -> ForwardModelSpec:
     ((128, 128), 3.88)
     """
     check_choice("sensor", name, FORWARD_MODEL_PRESETS)
-    return ForwardModelSpec(**(_PRESETS[name] | changes))
+    return spec_from_sensor(make_sensor(name), **changes)
 
 
 def as_forward_model_spec(sensor: Any) -> ForwardModelSpec:
     """The forward-model spec of `sensor`: a spec, a preset name, or a sensor object.
 
-    A sensor object is anything with a ``forward_model_spec()`` method returning a spec.
+    A sensor object is a `taxel.sensor.TactileSensor` (see `spec_from_sensor`), or anything
+    with a ``forward_model_spec()`` method returning a spec.
 
     Examples
     --------
@@ -230,12 +271,14 @@ def as_forward_model_spec(sensor: Any) -> ForwardModelSpec:
         return sensor
     if isinstance(sensor, str):
         return forward_model_preset(sensor)
+    if isinstance(sensor, TactileSensor):
+        return spec_from_sensor(sensor)
     method = getattr(sensor, "forward_model_spec", None)
     if callable(method):
         spec = method()
         if isinstance(spec, ForwardModelSpec):
             return spec
     raise TypeError(
-        "`sensor` must be a ForwardModelSpec, a preset name or have a forward_model_spec() "
-        f"method, got {type(sensor).__name__}"
+        "`sensor` must be a ForwardModelSpec, a TactileSensor, a preset name or have a "
+        f"forward_model_spec() method, got {type(sensor).__name__}"
     )
