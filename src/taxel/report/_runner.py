@@ -10,6 +10,7 @@ from pathlib import Path
 
 from taxel.report._context import DemoContext
 from taxel.report._html import render_html
+from taxel.report._inverse import inverse_problem
 from taxel.report._mechanics import forward_problem
 from taxel.report._model import Experiment
 from taxel.report._passive import can_top, edge_at_two_forces, pen_tip, texture_table, washer
@@ -26,6 +27,7 @@ EXPERIMENTS: tuple[ExperimentFunction, ...] = (
     washer,
     texture_table,
     forward_problem,
+    inverse_problem,
 )
 
 
