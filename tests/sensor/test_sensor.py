@@ -99,3 +99,13 @@ def test_bad_sensor_specifications():
     sensor = make_sensor("resistive16")
     with pytest.raises(ValueError, match="`frame_rate` must be > 0"):
         type(sensor)(**{**sensor.__dict__, "frame_rate": 0.0})
+
+
+def test_capacitive_cells_with_their_own_modulus_feel_the_stress(presets):
+    # a dielectric of constrained modulus M is strained by sigma_z / M at the cell's depth
+    sensor = presets["capacitive4x4"]
+    frame = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, 2e4))
+    assert np.allclose(frame.quantity, frame.fields.stress / 1.0e6)
+    assert frame.quantity.max() < -0.01  # compressed by more than 1 % everywhere
+    rest = sensor.frame_from_pressure(np.zeros(sensor.load_grid.shape))
+    assert np.all(frame.raw > rest.raw + 1000)  # 16-bit codes move with the load

@@ -194,6 +194,8 @@ class TactileSensor:
         """Mechanical fields at each taxel for a surface pressure on the load grid [Pa]."""
         pressure = as_finite_array("pressure", pressure, ndim=2)
         need = (_FIELD_OF_QUANTITY[self.quantity], "pressure")
+        if self.quantity == "strain" and self.cell_modulus is not None:
+            need = ("stress", "pressure")  # the cell's strain follows the stress at its depth
         return taxel_fields(
             pressure, self.load_grid, self.cover, displacement=displacement, need=need
         )
