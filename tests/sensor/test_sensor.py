@@ -109,3 +109,17 @@ def test_capacitive_cells_with_their_own_modulus_feel_the_stress(presets):
     assert frame.quantity.max() < -0.01  # compressed by more than 1 % everywhere
     rest = sensor.frame_from_pressure(np.zeros(sensor.load_grid.shape))
     assert np.all(frame.raw > rest.raw + 1000)  # 16-bit codes move with the load
+
+
+@pytest.mark.parametrize("name", ["harmon10x20", "resistive16"])
+def test_no_working_taxel_clips_below_full_scale(presets, name):
+    # the ADC range covers the unit's gains, offsets and crosstalk (81 of resistive16's 256
+    # taxels read the top code at full scale when it covered only the ideal signal)
+    sensor = presets[name]
+    top = 2**sensor.readout.bits - 1
+    full = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, sensor.full_scale))
+    rest = sensor.frame_from_pressure(np.zeros(sensor.load_grid.shape))
+    assert full.raw.max() < top and rest.raw.min() > 0
+    bottom, high = sensor.readout_chain.rails
+    assert bottom <= sensor.signal_range[0] and high > sensor.signal_range[1]
+    assert sensor.readout_chain.lsb == pytest.approx((high - bottom) / 4096)

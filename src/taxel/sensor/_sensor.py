@@ -245,10 +245,18 @@ class TactileSensor:
 
     @cached_property
     def readout_chain(self) -> ReadoutChain:
-        """The electronics of this unit, bound to its signal range and fixed pattern."""
+        """The electronics of this unit, bound to its signal range and fixed pattern.
+
+        The ADC range covers this unit's taxels from rest to a full-scale flat plate after
+        their gain, offset and crosstalk, so that no working taxel clips below full scale.
+        """
         low, high = self.signal_range
-        signal_shape = np.shape(self.respond(np.zeros(self.shape)))
-        return ReadoutChain(self.readout, low, high, signal_shape)
+        rest = self._ideal_signal(np.zeros(self.load_grid.shape))
+        loaded = self._ideal_signal(np.full(self.load_grid.shape, self.full_scale))
+        chain = ReadoutChain(self.readout, low, high, np.shape(rest))
+        if self.readout.is_identity or self.is_dynamic:
+            return chain
+        return chain.covering(np.stack([rest, loaded]))
 
     @cached_property
     def signal_range(self) -> tuple[float, float]:
