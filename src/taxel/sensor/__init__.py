@@ -5,8 +5,12 @@ Sensor model
     TaxelFields, taxel_fields, density_class, DENSITY_CLASSES
 Presets
     make_sensor, PRESET_NAMES
+Calibration (flat-plate presses; dead and stuck taxels masked)
+    calibrate, Calibration, calibration_error, CalibrationError
 """
 
+from taxel.sensor._calibration import Calibration, calibrate
+from taxel.sensor._calibration_error import CalibrationError, calibration_error
 from taxel.sensor._cover import Cover
 from taxel.sensor._fields import FIELD_NAMES, TaxelFields, taxel_fields
 from taxel.sensor._geometry import DENSITY_CLASSES, ArrayGeometry, LoadGrid, density_class
@@ -19,6 +23,8 @@ __all__ = [
     "FIELD_NAMES",
     "PRESET_NAMES",
     "ArrayGeometry",
+    "Calibration",
+    "CalibrationError",
     "Cover",
     "LoadGrid",
     "Readout",
@@ -26,6 +32,8 @@ __all__ = [
     "SensorFrame",
     "TactileSensor",
     "TaxelFields",
+    "calibrate",
+    "calibration_error",
     "density_class",
     "make_sensor",
     "taxel_fields",
