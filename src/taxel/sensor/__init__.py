@@ -7,6 +7,9 @@ Presets
     make_sensor, PRESET_NAMES
 Calibration (flat-plate presses; dead and stuck taxels masked)
     calibrate, Calibration, calibration_error, CalibrationError
+Harmon's criteria (chapter section 25.2), measured
+    harmon_table, HarmonTable, HarmonRow, two_point_resolution, TwoPointResolution,
+    reading_step, ReadingStep
 """
 
 from taxel.sensor._calibration import Calibration, calibrate
@@ -14,8 +17,11 @@ from taxel.sensor._calibration_error import CalibrationError, calibration_error
 from taxel.sensor._cover import Cover
 from taxel.sensor._fields import FIELD_NAMES, TaxelFields, taxel_fields
 from taxel.sensor._geometry import DENSITY_CLASSES, ArrayGeometry, LoadGrid, density_class
+from taxel.sensor._harmon import HarmonRow, HarmonTable, harmon_table
+from taxel.sensor._harmon_measures import ReadingStep, reading_step
 from taxel.sensor._presets import PRESET_NAMES, make_sensor
 from taxel.sensor._readout import Readout, ReadoutChain
+from taxel.sensor._resolution import TwoPointResolution, two_point_resolution
 from taxel.sensor._sensor import SensorFrame, TactileSensor
 
 __all__ = [
@@ -26,15 +32,22 @@ __all__ = [
     "Calibration",
     "CalibrationError",
     "Cover",
+    "HarmonRow",
+    "HarmonTable",
     "LoadGrid",
+    "ReadingStep",
     "Readout",
     "ReadoutChain",
     "SensorFrame",
     "TactileSensor",
     "TaxelFields",
+    "TwoPointResolution",
     "calibrate",
     "calibration_error",
     "density_class",
+    "harmon_table",
     "make_sensor",
+    "reading_step",
     "taxel_fields",
+    "two_point_resolution",
 ]

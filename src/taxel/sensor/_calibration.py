@@ -41,8 +41,10 @@ def isotonic_increasing(values: np.ndarray) -> np.ndarray:
     [1.0, 2.5, 2.5, 4.0]
     """
     n = values.shape[0]
-    flat = values.reshape(n, -1)
-    result = np.empty_like(flat)
+    result = values.reshape(n, -1).astype(float)  # a copy
+    crossing = np.flatnonzero(np.any(np.diff(result, axis=0) < 0, axis=0))
+    flat = result[:, crossing]  # only columns that are not monotonic already need a fit
+    fitted = np.empty_like(flat)
     j = np.arange(n)[:, None]
     k = np.arange(n)[None, :]
     upper = k >= j
@@ -55,7 +57,8 @@ def isotonic_increasing(values: np.ndarray) -> np.ndarray:
         means = np.where(upper[..., None], means, np.inf)
         lowest = np.minimum.accumulate(means[:, ::-1], axis=1)[:, ::-1]  # min over k >= i
         lowest = np.where(upper[..., None], lowest, -np.inf)  # only j <= i
-        result[:, start : start + step] = lowest.max(axis=0)
+        fitted[:, start : start + step] = lowest.max(axis=0)
+    result[:, crossing] = fitted
     return result.reshape(values.shape)
 
 
