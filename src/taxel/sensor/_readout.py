@@ -241,7 +241,8 @@ class ReadoutChain:
                 rng=rng,
             )
         bottom, top = self.rails
-        y = self.pattern.faults.apply(y, low=bottom, high=top)
+        if readout.dead or readout.stuck or readout.saturated:
+            y = self.pattern.faults.apply(y, low=bottom, high=top)
         if readout.bits is None:
             return y
         return adc_codes(y, bits=readout.bits, low=bottom, high=top)
