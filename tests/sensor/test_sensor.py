@@ -3,8 +3,10 @@
 import numpy as np
 import pytest
 
-from taxel.mechanics import hertz_sphere, make_indenter
-from taxel.sensor import PRESET_NAMES, Readout, make_sensor
+from taxel.mechanics import ElasticMaterial, hertz_sphere, make_indenter
+from taxel.sensor import PRESET_NAMES, ArrayGeometry, Cover, Readout, make_sensor
+
+SILICONE = ElasticMaterial(1e6, 0.49)
 
 
 @pytest.fixture(scope="module")
@@ -123,3 +125,22 @@ def test_no_working_taxel_clips_below_full_scale(presets, name):
     bottom, high = sensor.readout_chain.rails
     assert bottom <= sensor.signal_range[0] and high > sensor.signal_range[1]
     assert sensor.readout_chain.lsb == pytest.approx((high - bottom) / 4096)
+
+
+@pytest.mark.parametrize(
+    ("build", "error", "match"),
+    [
+        (lambda: ArrayGeometry(4, 4, 0.0), ValueError, "`pitch` must be > 0, got 0"),
+        (lambda: ArrayGeometry(4, 4, (1e-3, -1e-3), "rectangular"), ValueError, "`pitch`"),
+        (lambda: Readout(bits=25), ValueError, "`bits` must lie in \\[1, 24\\], got 25"),
+        (lambda: Readout(bits=0), ValueError, "`bits` must lie in \\[1, 24\\], got 0"),
+        (lambda: Readout(bits=8.5), TypeError, "`bits` must be an integer or None"),
+        (lambda: Cover(SILICONE, depth=0.0), ValueError, "`depth` must be > 0, got 0"),
+        (lambda: Cover(SILICONE, depth=-1e-3), ValueError, "`depth` must be > 0, got -0.001"),
+        (lambda: make_sensor("vhdta256"), ValueError, "`name` must be one of vhdta128"),
+        (lambda: make_indenter("cup"), ValueError, "`name` must be one of pen, sphere"),
+    ],
+)
+def test_bad_specifications_name_the_parameter_and_value(build, error, match):
+    with pytest.raises(error, match=match):
+        build()
