@@ -38,7 +38,7 @@ def _default_position(indenter: Any) -> tuple[float, float]:
     return (-float(radius), 0.0) if radius is not None else (0.0, 0.0)
 
 
-def _truth(frame: Any, sensor: Any, meta: dict[str, Any]) -> dict[str, np.ndarray]:
+def _truth(frame: Any, sensor: Any, meta: dict[str, Any]) -> dict[str, Any]:
     from taxel.sensor import taxel_fields
 
     contact = frame.contact
@@ -96,6 +96,8 @@ def _run(arguments: argparse.Namespace) -> int:
         rng=arguments.seed,
     )
     contact = frame.contact
+    if contact is None:  # press always solves a contact; this keeps the types honest
+        raise CommandLineError("the press returned no contact")
     raw = np.asarray(frame.raw)
     meta = {
         "sensor": sensor.name,

@@ -341,19 +341,18 @@ def calibrate(
     min_response = check_range("min_response", min_response, 0.0, 1.0, high_inclusive=False)
     count = int(repeats) if rng is not None else 1
     generator = None if rng is None else np.random.default_rng(rng)
-    means, lowest, highest, noise = [], None, None, None
+    means, lows, highs, spreads = [], [], [], []
     for level in levels:
         quantity = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, level)).quantity
         frames = np.stack(
             [np.asarray(sensor.read(quantity, rng=generator), float) for _ in range(count)]
         )
         means.append(frames.mean(axis=0))
-        low, high = frames.min(axis=0), frames.max(axis=0)
-        lowest = low if lowest is None else np.minimum(lowest, low)
-        highest = high if highest is None else np.maximum(highest, high)
-        if noise is None:
-            noise = frames.std(axis=0, ddof=1) if count > 1 else np.zeros(frames.shape[1:])
+        lows.append(frames.min(axis=0))
+        highs.append(frames.max(axis=0))
+        spreads.append(frames.std(axis=0, ddof=1) if count > 1 else np.zeros(frames.shape[1:]))
     readings = np.stack(means)
+    lowest, highest, noise = np.min(lows, axis=0), np.max(highs, axis=0), spreads[0]
     change = readings[-1] - readings[0]
     direction = -1.0 if np.median(change) < 0 else 1.0
     fitted = direction * isotonic_increasing(direction * readings)

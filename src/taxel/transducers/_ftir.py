@@ -188,7 +188,7 @@ _SIXTY_DEGREES = math.pi / 3
 
 
 @functools.lru_cache(maxsize=16)
-def _scratch_pattern(shape: tuple[int, ...], seed: int, count: int, strength: float) -> np.ndarray:
+def _scratch_pattern(shape: tuple[int, int], seed: int, count: int, strength: float) -> np.ndarray:
     pattern = glass_scratches(shape, rng=seed, count=count, strength=strength)
     pattern.setflags(write=False)  # shared by every frame of this glass
     return pattern
@@ -316,8 +316,9 @@ class FtirTransducer:
         Drawn once per glass and image shape: drawing it costs more than the rest of a
         frame (11 of 12 ms for a 128 x 128 image).
         """
+        rows, cols = shape
         return _scratch_pattern(
-            tuple(int(n) for n in shape),
+            (int(rows), int(cols)),
             self.scratch_seed,
             self.scratch_count,
             self.scratch_strength,
