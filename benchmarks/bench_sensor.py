@@ -41,14 +41,17 @@ def _speed(quick: bool) -> list[str]:
     vhdta = make_sensor("vhdta128")
     first = vhdta.press(sphere, normal_force=1.0, rng=rng)  # builds operators and caches
     cold = _median_ms(lambda: vhdta.press(sphere, normal_force=1.0, rng=rng), 5 if quick else 20)
-    # a press: 20 frames, force rising by 5 % per frame, each warm-started from the last
-    frames, solve, previous = [], [], first.contact
-    for step in range(1, 21):
-        started = time.perf_counter()
-        frame = vhdta.press(sphere, normal_force=1.05**step, initial=previous, rng=rng)
-        frames.append(time.perf_counter() - started)
-        solve.append(frame.contact.n_iterations)
-        previous = frame.contact
+    # a press: 20 frames, force rising by 5 % per frame, each warm-started from the last;
+    # the press is repeated so that one busy moment of a shared machine does not decide
+    frames, solve = [], []
+    for _ in range(1 if quick else 5):
+        previous = first.contact
+        for step in range(1, 21):
+            started = time.perf_counter()
+            frame = vhdta.press(sphere, normal_force=1.05**step, initial=previous, rng=rng)
+            frames.append(time.perf_counter() - started)
+            solve.append(frame.contact.n_iterations)
+            previous = frame.contact
     warm = float(np.median(frames) * 1e3)
     electronics = _median_ms(
         lambda: vhdta.frame_from_pressure(
@@ -63,8 +66,8 @@ def _speed(quick: bool) -> list[str]:
     contact = small.press(sphere, normal_force=1.0).contact
     rest = _median_ms(lambda: small.frame_from_pressure(contact.pressure, rng=rng), repeats)
     rows = [
-        ("vhdta128 sphere press, cold contact solve", cold, VHDTA_TARGET, "-"),
-        ("vhdta128 sphere press, warm-started in a press (20 frames)", warm, VHDTA_TARGET,
+        ("vhdta128 sphere press at 1 N, cold contact solve", cold, VHDTA_TARGET, "-"),
+        ("vhdta128 sphere press, 1 to 2.7 N, warm-started frame to frame", warm, VHDTA_TARGET,
          f"{int(np.median(solve))}"),
         ("  of which mechanics at depth, transducer, camera noise", electronics, None, "-"),
         ("resistive16 (16 x 16) sphere press", press, SMALL_TARGET,
@@ -74,8 +77,9 @@ def _speed(quick: bool) -> list[str]:
     lines = [
         "### Frame speed",
         "",
-        "One frame = contact solve (12.5 mm sphere, 1 N; the press rises by 5 % a frame) + "
-        "fields at the sensing depth + transducer + readout with noise, one core.",
+        "One frame = contact solve (12.5 mm sphere; in the press the force rises by 5 % a "
+        "frame, 20 frames, repeated 5 times) + fields at the sensing depth + transducer + "
+        "readout with noise; medians on one core of a machine shared with other jobs.",
         "",
         "| case | median time [ms] | contact iterations | target [ms] | meets target |",
         "|---|---|---|---|---|",
