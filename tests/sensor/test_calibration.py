@@ -5,6 +5,7 @@ import dataclasses
 import numpy as np
 import pytest
 
+from taxel.mechanics import make_indenter
 from taxel.sensor import (
     Calibration,
     Readout,
@@ -12,7 +13,7 @@ from taxel.sensor import (
     calibration_error,
     make_sensor,
 )
-from taxel.sensor._calibration import isotonic_increasing
+from taxel.sensor._monotone import isotonic_increasing
 
 STATIC = ["harmon10x20", "resistive16", "capacitive4x4", "microbend16", "reflective8x8"]
 
@@ -211,3 +212,18 @@ def test_bad_calibration_arguments(sensors):
         calibrate("capacitive4x4")
     with pytest.raises(ValueError, match="`pressures` must lie in \\[0, full_scale"):
         calibration_error(sensor, calibrate(sensor, n_levels=4), pressures=[1e6])
+
+
+def test_felt_pressure_is_the_stress_at_depth_under_any_load(sensors):
+    # a plate over the array loads its edge taxels less; a sphere by the edge shows it
+    sensor = dataclasses.replace(sensors["resistive16"], readout=Readout(bits=16))
+    calibration = calibrate(sensor)
+    assert calibration.felt_fraction[8, 8] == pytest.approx(1.0, abs=1e-3)
+    assert calibration.felt_fraction[0, 0] == pytest.approx(0.81, abs=0.01)
+    frame = sensor.press(make_indenter("sphere"), normal_force=0.3, position=(-15e-3, -15e-3))
+    felt = -frame.fields.stress
+    assert felt[0, 0] > 0.2 * felt.max()  # the corner taxel is loaded
+    error = np.abs(calibration.felt_pressure(frame.raw) - felt)
+    assert error.max() < 1e-3 * sensor.full_scale
+    plate_equivalent = calibration.apply(frame.raw)
+    assert plate_equivalent[0, 0] == pytest.approx(felt[0, 0] / 0.81, rel=0.02)

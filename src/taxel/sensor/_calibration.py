@@ -21,54 +21,25 @@ import numpy as np
 from scipy.interpolate import PchipInterpolator
 
 from taxel._validation import as_finite_array, check_positive, check_range
+from taxel.sensor._fields import taxel_fields
+from taxel.sensor._monotone import invert_pchip, isotonic_increasing
 from taxel.sensor._sensor import TactileSensor
 
 __all__ = ["Calibration", "calibrate"]
 
 _FORMAT = "taxel.calibration/1"
-_BISECTIONS = 40  # halves a segment to 1e-12 of its width
-
-
-def isotonic_increasing(values: np.ndarray) -> np.ndarray:
-    """Least-squares non-decreasing fit along axis 0 (equal weights), column by column.
-
-    Uses the min-max formula of isotonic regression,
-    ``fit[i] = max_{j <= i} min_{k >= i} mean(values[j:k + 1])``, exact and vectorised.
-
-    Examples
-    --------
-    >>> isotonic_increasing(np.array([[1.0], [3.0], [2.0], [4.0]])).ravel().tolist()
-    [1.0, 2.5, 2.5, 4.0]
-    """
-    n = values.shape[0]
-    result = values.reshape(n, -1).astype(float)  # a copy
-    crossing = np.flatnonzero(np.any(np.diff(result, axis=0) < 0, axis=0))
-    flat = result[:, crossing]  # only columns that are not monotonic already need a fit
-    fitted = np.empty_like(flat)
-    j = np.arange(n)[:, None]
-    k = np.arange(n)[None, :]
-    upper = k >= j
-    counts = np.where(upper, k - j + 1, 1)[..., None]
-    step = max(1, 2**22 // (n * n))  # columns per chunk: about 32 MB of temporaries
-    for start in range(0, flat.shape[1], step):
-        chunk = flat[:, start : start + step]
-        sums = np.concatenate([np.zeros((1, chunk.shape[1])), np.cumsum(chunk, axis=0)])
-        means = (sums[None, 1:, :] - sums[:-1, None, :]) / counts  # [j, k]: mean of j..k
-        means = np.where(upper[..., None], means, np.inf)
-        lowest = np.minimum.accumulate(means[:, ::-1], axis=1)[:, ::-1]  # min over k >= i
-        lowest = np.where(upper[..., None], lowest, -np.inf)  # only j <= i
-        fitted[:, start : start + step] = lowest.max(axis=0)
-    result[:, crossing] = fitted
-    return result.reshape(values.shape)
 
 
 @dataclass(frozen=True, eq=False)
 class Calibration:
     """A per-taxel map from raw reading to equivalent plate pressure [Pa].
 
-    The calibrated value of a taxel is the pressure of a flat plate over the whole array
-    that gives its reading: the pressure on the cover above it when the load is uniform,
-    and for any load the sensed quantity expressed in that unit. Build it with `calibrate`.
+    The calibrated value of a taxel (`apply`) is the pressure of a flat plate over the
+    whole array that gives its reading: the pressure on the cover above it when the load
+    is uniform, and for any load the sensed quantity expressed in that unit. `felt_pressure`
+    turns it into the pressure the taxel feels, the normal stress at its depth, which a
+    plate over the array delivers in full to inner taxels and only in part to the edge
+    ones. Build it with `calibrate`.
 
     Attributes
     ----------
@@ -92,6 +63,9 @@ class Calibration:
         The sensor's working range [Pa].
     repeats : int
         Frames averaged per pressure.
+    felt_fraction : numpy.ndarray, optional
+        Per taxel, the compressive normal stress at the sensing depth per pascal of plate
+        pressure [-], from the sensor's cover model; None when not known (ones are used).
     """
 
     sensor_name: str
@@ -103,6 +77,7 @@ class Calibration:
     noise: np.ndarray = field(repr=False)
     full_scale: float
     repeats: int
+    felt_fraction: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -143,9 +118,21 @@ class Calibration:
         taxels = int(np.prod(shape))
         knots = self.direction * self.readings.reshape(len(self.pressures), taxels)
         x = np.clip(self.direction * raw.reshape(-1, taxels), knots[0], knots[-1])
-        pressure = _invert_pchip(self._response, self.pressures, knots, x)
+        pressure = invert_pchip(self._response, self.pressures, knots, x)
         pressure = np.where(self.valid.reshape(taxels), pressure, np.nan)
         return pressure.reshape(*lead, *shape)
+
+    def felt_pressure(self, raw: Any) -> np.ndarray:
+        """Pressure each taxel feels: the normal stress at its depth [Pa], NaN if excluded.
+
+        `apply` times `felt_fraction`. For cells that sense the stress at their depth
+        (resistive, FTIR, microbend, capacitive cells with their own modulus) this is their
+        input whatever the load: what a reconstruction's forward model predicts. For
+        sensors of the cover's strain or surface displacement it holds for flat loads only.
+        For microbend fibres it is the mean along each fibre.
+        """
+        fraction = 1.0 if self.felt_fraction is None else self.felt_fraction
+        return self.apply(raw) * fraction
 
     # ----------------------------------------------------------------------- files
     def save(self, path: str | os.PathLike[str], *, overwrite: bool = False) -> Path:
@@ -185,6 +172,9 @@ class Calibration:
                 unresponsive=self.unresponsive,
                 pinned=self.pinned,
                 noise=self.noise,
+                felt_fraction=(
+                    np.ones(self.shape) if self.felt_fraction is None else self.felt_fraction
+                ),
             )
         return path
 
@@ -202,14 +192,15 @@ class Calibration:
             raise ValueError(f"{path}: not a taxel calibration file ({error})") from None
         if meta.get("format") != _FORMAT:
             raise ValueError(f"{path}: not a taxel calibration file (format {meta.get('format')})")
-        missing = {"pressures", "readings", "unresponsive", "pinned", "noise"} - set(arrays)
+        wanted = {"pressures", "readings", "unresponsive", "pinned", "noise", "felt_fraction"}
+        missing = wanted - set(arrays)
         if missing:
             raise ValueError(f"{path}: missing array(s) {', '.join(sorted(missing))}")
         readings, pressures = arrays["readings"], arrays["pressures"]
         shape = readings.shape[1:]
         if readings.ndim < 2 or pressures.shape != readings.shape[:1]:
             raise ValueError(f"{path}: readings {readings.shape} do not match {pressures.shape}")
-        for name in ("unresponsive", "pinned", "noise"):
+        for name in ("unresponsive", "pinned", "noise", "felt_fraction"):
             if arrays[name].shape != shape:
                 raise ValueError(f"{path}: `{name}` has shape {arrays[name].shape}, not {shape}")
         unresponsive = arrays["unresponsive"].astype(bool)
@@ -224,32 +215,8 @@ class Calibration:
             noise=arrays["noise"].astype(float),
             full_scale=float(meta["full_scale"]),
             repeats=int(meta["repeats"]),
+            felt_fraction=arrays["felt_fraction"].astype(float),
         )
-
-
-def _invert_pchip(
-    response: PchipInterpolator, pressures: np.ndarray, knots: np.ndarray, x: np.ndarray
-) -> np.ndarray:
-    """Per taxel t, the pressure at which the non-decreasing response reads x[:, t]."""
-    frames, taxels = x.shape
-    columns = np.broadcast_to(np.arange(taxels), x.shape)
-    below = (knots[None] < x[:, None]).sum(axis=1)  # (frames, taxels): first knot >= x
-    at_most = (knots[None] <= x[:, None]).sum(axis=1) - 1  # last knot <= x
-    on_knot = below <= at_most  # x equals the knots below..at_most (a flat run, or one knot)
-    middle = 0.5 * (pressures[np.minimum(below, len(pressures) - 1)] + pressures[at_most])
-    segment = np.clip(at_most, 0, len(pressures) - 2)
-    coefficients = response.c[:, segment, columns]  # (4, frames, taxels)
-    low = np.zeros(x.shape)
-    high = (pressures[segment + 1] - pressures[segment]).astype(float)
-    for _ in range(_BISECTIONS):
-        mid = 0.5 * (low + high)
-        value = ((coefficients[0] * mid + coefficients[1]) * mid + coefficients[2]) * mid
-        value = value + coefficients[3]
-        below_target = value < x
-        low = np.where(below_target, mid, low)
-        high = np.where(below_target, high, mid)
-    inside = pressures[segment] + 0.5 * (low + high)
-    return np.where(on_knot, middle, inside)
 
 
 def _rails(sensor: TactileSensor) -> tuple[float, float] | None:
@@ -311,6 +278,14 @@ def calibrate(
     `Calibration.apply` inverts it by bisection on the right segment. The frames come from
     ``sensor.frame_from_pressure(np.full(sensor.load_grid.shape, p))``.
 
+    A microbend array is calibrated per fibre, not per crossing: each reading is the sum
+    of the loads on the 16 crossings along a fibre, so no load on the whole array can tell
+    one crossing's response from its neighbours'. Its calibrated value is the mean plate
+    pressure along each fibre; `taxel.transducers.separable_pressure` turns the row and
+    column values into an image. Crosstalk between taxels is a spatial effect that no
+    per-taxel map can undo: under a plate it folds into each taxel's gain, under a local
+    load it still spreads the reading (about 1 % of full scale for resistive16).
+
     Examples
     --------
     >>> from taxel.sensor import make_sensor
@@ -367,6 +342,7 @@ def calibrate(
         sensor_name=sensor.name,
         pressures=levels,
         readings=fitted,
+        felt_fraction=_felt_fraction(sensor, readings.shape[1:]),
         valid=~(unresponsive | pinned),
         unresponsive=unresponsive,
         pinned=pinned,
@@ -374,6 +350,19 @@ def calibrate(
         full_scale=float(sensor.full_scale),
         repeats=count,
     )
+
+
+def _felt_fraction(sensor: TactileSensor, shape: tuple[int, ...]) -> np.ndarray:
+    """Normal stress at the sensing depth per pascal of plate pressure, per channel [-]."""
+    plate = np.ones(sensor.load_grid.shape)
+    stress = taxel_fields(plate, sensor.load_grid, sensor.cover, need=("stress",)).stress
+    felt = np.clip(-stress, 0.0, None)
+    rows, cols = sensor.shape
+    if shape == (rows, cols):
+        return felt
+    if shape == (rows + cols,):  # fibres: the mean along each row, then each column
+        return np.concatenate([felt.mean(axis=1), felt.mean(axis=0)])
+    return np.ones(shape)
 
 
 def _levels(sensor: TactileSensor, pressures: Any, n_levels: int) -> np.ndarray:

@@ -172,6 +172,10 @@ def harmon_table(
     - *Monotonic*: a 101-step flat-plate sweep of the noise-free mean reading.
     - *Compliant interface*: the pad's Young's modulus, at most 5 MPa (an elastomer; a
       fingertip is about 0.1 MPa). Ruggedness and cost cannot be simulated.
+    - Added after Harmon: reliability (the share of taxels the calibration keeps) and
+      speed (the sampling rate) are measured; modularity and multisensor support are not
+      properties of one simulated array. The density class and the distinct reliable
+      levels (the Ellis seed's "resolution" of a taxel) are reported for information.
 
     Examples
     --------
