@@ -2,7 +2,7 @@
 
 Sensor model
     TactileSensor, SensorFrame, ArrayGeometry, LoadGrid, Cover, Readout, ReadoutChain,
-    TaxelFields, taxel_fields, density_class, DENSITY_CLASSES
+    TaxelFields, taxel_fields, FIELD_NAMES, density_class, DENSITY_CLASSES
 Presets
     make_sensor, PRESET_NAMES
 Calibration (flat-plate presses; dead and stuck taxels masked)
