@@ -83,10 +83,12 @@ def _run(arguments: argparse.Namespace) -> int:
     cell_x, cell_y = sensor.load_grid.coordinates()
     heights = indenter.heights(cell_x, cell_y, position=(x, y), angle=arguments.angle)
     if not np.any(np.isfinite(heights)):
+        width, height = (size * 1e3 for size in sensor.geometry.extent)
+        cell = sensor.load_grid.spacing[1] * 1e3
         raise CommandLineError(
-            f"the {arguments.object} at x = {x:g} m, y = {y:g} m does not reach the "
-            f"{sensor.geometry.extent[0] * 1e3:g} x {sensor.geometry.extent[1] * 1e3:g} mm "
-            "active area"
+            f"the {arguments.object} at x = {x:g} m, y = {y:g} m is over no cell of the "
+            f"{width:g} x {height:g} mm load grid ({cell:g} mm cells): move it onto the "
+            "sensor, or refine the grid with --oversampling"
         )
     frame = sensor.press(
         indenter,
