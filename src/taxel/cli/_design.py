@@ -57,8 +57,11 @@ def _cells(row: Any) -> tuple[str, str]:
         row.unit
     ]
     measured = "not measurable" if value is None else f"{_number(value * scale)} {unit}"
-    if name == "spatial resolution" and row.passed is False and value is None:
-        measured = "not resolved on the array"
+    if value is None and row.passed is False:  # measured, but beyond what the array shows
+        measured = {
+            "spatial resolution": "not resolved on the array",
+            "sensitivity": "above the full-scale force",
+        }.get(name, measured)
     return measured, _range(low, high, scale, unit)
 
 
