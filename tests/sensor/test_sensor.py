@@ -144,3 +144,10 @@ def test_no_working_taxel_clips_below_full_scale(presets, name):
 def test_bad_specifications_name_the_parameter_and_value(build, error, match):
     with pytest.raises(error, match=match):
         build()
+
+
+def test_harmon_array_output_stays_within_its_supply(presets):
+    sensor = presets["harmon10x20"]
+    low, high = sensor.signal_range  # the ideal output from rest to full scale, +-5 %
+    assert high < sensor.transducer.supply_voltage
+    assert sensor.transducer.respond(sensor.full_scale) == pytest.approx(4.5)
