@@ -1,5 +1,8 @@
 """The CPM-Finger of FabricSlide as a sensor model: the known facts hold, the rest is named."""
 
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -39,3 +42,9 @@ def test_a_press_reads_counts_above_rest_and_calibrates(sensor):
     assert calibration.valid.all()
     plate = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, 2e4)).raw
     assert np.abs(calibration.apply(plate) - 2e4).max() < 0.02 * sensor.full_scale
+
+
+def test_reading_files_does_not_load_the_sensor_models():
+    code = "import sys, taxel.io; print('taxel.sensor' in sys.modules)"
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert result.stdout.strip() == "False"

@@ -136,5 +136,11 @@ def test_bad_arguments():
         two_point_resolution(make_sensor("capacitive4x4"), dip=1.5)
     with pytest.raises(ValueError, match="photoelastic: its frames are fringes"):
         two_point_resolution(make_sensor("photoelastic64"))
+    with pytest.raises(ValueError, match="reads frames of shape \\(4, 4\\), but 'resistive16'"):
+        harmon_table(
+            make_sensor("resistive16"), calibration=calibrate(make_sensor("capacitive4x4"))
+        )
+    with pytest.raises(TypeError, match="`calibration` must be a Calibration"):
+        two_point_resolution(make_sensor("capacitive4x4"), calibration="cal.npz")
     with pytest.raises(ValueError, match="`spread` must be one of element, uniform"):
         sensitivity_force(make_sensor("capacitive4x4"), 1.0, spread="line")

@@ -20,10 +20,12 @@ dielectric of permittivity 3 and constrained modulus 1 MPa; a 2 mm silicone pad
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from taxel.io._fabricslide import CPM_FINGER
-from taxel.mechanics import ElasticMaterial
-from taxel.sensor import ArrayGeometry, Cover, Readout, TactileSensor
-from taxel.transducers import CapacitiveTransducer
+
+if TYPE_CHECKING:
+    from taxel.sensor import TactileSensor
 
 __all__ = ["CPM_FINGER_ASSUMED", "cpm_finger_sensor"]
 
@@ -63,6 +65,11 @@ def cpm_finger_sensor() -> TactileSensor:
     >>> sensor.shape, sensor.quantity, sensor.readout.bits, sensor.frame_rate
     ((4, 4), 'strain', 16, 35.6)
     """
+    # imported here so that reading files does not load the sensor models (scipy and all)
+    from taxel.mechanics import ElasticMaterial
+    from taxel.sensor import ArrayGeometry, Cover, Readout, TactileSensor
+    from taxel.transducers import CapacitiveTransducer
+
     rows, cols = 4, 4
     if rows * cols != CPM_FINGER["n_taxels"]:  # the README's count is the one fact we reuse
         raise AssertionError("CPM_FINGER no longer has 16 taxels")

@@ -219,6 +219,19 @@ class Calibration:
         )
 
 
+def check_calibration(calibration: Any, sensor: TactileSensor) -> Calibration:
+    """Raise unless `calibration` is a Calibration whose frames have the sensor's shape."""
+    if not isinstance(calibration, Calibration):
+        raise TypeError(f"`calibration` must be a Calibration, got {calibration!r}")
+    shape = np.shape(sensor.read(np.zeros(sensor.shape)))
+    if calibration.shape != shape:
+        raise ValueError(
+            f"`calibration` of {calibration.sensor_name!r} reads frames of shape "
+            f"{calibration.shape}, but {sensor.name!r} gives {shape}"
+        )
+    return calibration
+
+
 def _rails(sensor: TactileSensor) -> tuple[float, float] | None:
     """(bottom, top) raw values a taxel pinned at a rail reads; None if unbounded."""
     if sensor.readout.bits is not None:

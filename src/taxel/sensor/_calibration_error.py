@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 
 from taxel._validation import as_finite_array, check_range
-from taxel.sensor._calibration import Calibration
+from taxel.sensor._calibration import Calibration, check_calibration
 from taxel.sensor._sensor import TactileSensor
 
 __all__ = ["CalibrationError", "calibration_error"]
@@ -102,8 +102,7 @@ def calibration_error(
     """
     if not isinstance(sensor, TactileSensor):
         raise TypeError(f"`sensor` must be a TactileSensor, got {sensor!r}")
-    if not isinstance(calibration, Calibration):
-        raise TypeError(f"`calibration` must be a Calibration, got {calibration!r}")
+    check_calibration(calibration, sensor)
     if pressures is None:
         levels = np.linspace(0.0, sensor.full_scale, 41)
     else:

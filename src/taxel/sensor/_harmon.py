@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel.sensor._calibration import Calibration, calibrate
+from taxel.sensor._calibration import Calibration, calibrate, check_calibration
 from taxel.sensor._harmon_measures import (
     hysteresis_width,
     monotonic_fraction,
@@ -193,6 +193,8 @@ def harmon_table(
     calibratable = not sensor.is_dynamic and sensor.quantity != "stress_difference"
     if calibration is None and calibratable:
         calibration = calibrate(sensor, rng=generator)
+    elif calibration is not None:
+        check_calibration(calibration, sensor)
     rows: list[HarmonRow] = []
 
     # 1. spatial resolution, measured with two point loads

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from taxel._validation import check_positive, check_range
-from taxel.sensor._calibration import Calibration
+from taxel.sensor._calibration import Calibration, check_calibration
 from taxel.sensor._harmon_measures import sensed
 from taxel.sensor._sensor import TactileSensor
 
@@ -171,6 +171,8 @@ def two_point_resolution(
         raise ValueError(
             f"`sensor` {sensor.name!r} is photoelastic: its frames are fringes, not peaks"
         )
+    if calibration is not None:
+        check_calibration(calibration, sensor)
     dip = check_range("dip", dip, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
     peak_fraction = check_positive("peak_fraction", peak_fraction)
     fine = _refined(sensor)
