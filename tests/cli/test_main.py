@@ -37,8 +37,25 @@ def test_python_dash_m_runs_the_same_program():
     assert completed.returncode == 0 and completed.stdout.startswith("taxel ")
 
 
-def test_demo_reports_every_check_and_computes_verdicts(capsys):
-    assert main(["demo"]) == 0
+@pytest.fixture
+def one_experiment(monkeypatch):
+    """The command line's plumbing only: the experiments themselves are tested in tests/report."""
+    from taxel.report import _runner
+    from taxel.report._passive import pen_tip
+
+    monkeypatch.setattr(_runner, "EXPERIMENTS", (pen_tip,))
+
+
+def test_demo_writes_the_report_and_prints_a_summary(capsys, tmp_path, one_experiment):
+    assert main(["demo", "--quick", "--no-progress", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert "7 of 7 checks within tolerance" in out
-    assert out.count(" pass") == 7
+    assert "experiments pass every check" in out
+    assert (tmp_path / "report.html").exists() and (tmp_path / "results.json").exists()
+
+
+def test_demo_refuses_a_file_as_output_folder(capsys, tmp_path, one_experiment):
+    target = tmp_path / "taken.txt"
+    target.write_text("keep me")
+    assert main(["demo", "--quick", "--no-progress", "--out", str(target)]) == 2
+    assert "`out` must be a folder" in capsys.readouterr().err
+    assert target.read_text() == "keep me"

@@ -4,8 +4,11 @@ Figures
 -------
 plot_features: a tactile image with its edges, the fitted line or circle, holes and slots
 (as the seed's figures 3B-5B).
+plot_reconstruction: the naive against the regularized inverse, with the L-curve and GCV
+curve of the parameter choice.
 """
 
 from taxel.viz._features import plot_features
+from taxel.viz._reconstruction import plot_reconstruction
 
-__all__ = ["plot_features"]
+__all__ = ["plot_features", "plot_reconstruction"]

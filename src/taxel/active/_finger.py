@@ -1,0 +1,213 @@
+"""A simulated robot finger carrying any sensor preset: the `Probe` of simulation."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from taxel._validation import as_finite_array, check_positive
+from taxel.active._probe import ProbeReading
+from taxel.active._scene import SceneObject
+from taxel.frames import as_pose, transform_directions, transform_points
+from taxel.mechanics import ContactResult, solve_contact
+from taxel.sensor import TactileSensor
+
+__all__ = ["SimulatedFinger"]
+
+
+class SimulatedFinger:
+    """A finger with a tactile sensor in a scene of objects (implements `Probe`).
+
+    Parameters
+    ----------
+    sensor : TactileSensor
+        The sensor on the fingertip.
+    scene : sequence of SceneObject
+        The objects within reach.
+    pose : array_like, shape (4, 4)
+        Initial approach pose T_BS of the sensor (not touching anything).
+    max_force : float, optional
+        The largest force the finger may press with [N]; default: the sensor's full-scale
+        pressure over a quarter of its active area.
+    reach : float, default 0.05
+        How far along its normal the finger may travel looking for contact [m].
+    rng : numpy.random.Generator or int, optional
+        Noise of the sensor frames; None gives noise-free frames.
+
+    Examples
+    --------
+    >>> from taxel.active import make_ball
+    >>> from taxel.frames import make_pose
+    >>> from taxel.sensor import make_sensor
+    >>> ball = make_ball("ball", 6.25e-3)
+    >>> down = make_pose(np.diag([1.0, -1.0, -1.0]), [0.0, 0.0, 0.02])
+    >>> finger = SimulatedFinger(make_sensor("resistive16"), [ball], down)
+    >>> reading = finger.press(normal_force=5.0)
+    >>> round(reading.normal_force, 6)
+    5.0
+    >>> # 7.5 mm down to the ball's top, then a fraction of a mm into the 1.5 mm pad
+    >>> 7.5 < reading.travel * 1e3 < 8.0
+    True
+    """
+
+    def __init__(
+        self,
+        sensor: TactileSensor,
+        scene: Sequence[SceneObject],
+        pose: Any,
+        *,
+        max_force: float | None = None,
+        reach: float = 0.05,
+        rng: Any = None,
+    ) -> None:
+        self._sensor = sensor
+        self._scene = tuple(scene)
+        for item in self._scene:
+            if not isinstance(item, SceneObject):
+                raise TypeError(f"`scene` must hold SceneObject items, got {item!r}")
+        if max_force is None:
+            max_force = sensor.full_scale * sensor.geometry.active_area / 4
+        self.max_force = check_positive("max_force", max_force)
+        self.reach = check_positive("reach", reach)
+        self._rng = None if rng is None else np.random.default_rng(rng)
+        self._pose = np.eye(4)
+        self._last: ContactResult | None = None
+        self._time = 0.0
+        self.move_to(pose)
+
+    # ------------------------------------------------------------------ the Probe API
+    @property
+    def sensor(self) -> TactileSensor:
+        """The sensor on the fingertip."""
+        return self._sensor
+
+    @property
+    def pose(self) -> np.ndarray:
+        """The current approach pose T_BS."""
+        return self._pose.copy()
+
+    def move_to(self, pose: Any) -> None:
+        """Move to an approach pose; a pose inside an object raises and leaves the finger."""
+        pose = as_pose(pose, name="pose")
+        distances = self._distances(pose)
+        if np.isfinite(distances).any() and np.nanmin(distances) < 0:
+            raise ValueError(
+                f"`pose` puts the sensor {-np.nanmin(distances) * 1e3:.2f} mm inside an "
+                "object; the finger stays where it was"
+            )
+        self._pose = pose
+        self._last = None
+
+    def press(
+        self, *, normal_force: float | None = None, depth: float | None = None
+    ) -> ProbeReading:
+        """Press along the sensor normal (see `Probe.press`)."""
+        if (normal_force is None) == (depth is None):
+            raise ValueError("give exactly one of `normal_force` and `depth`")
+        if normal_force is not None:
+            check_positive("normal_force", normal_force)
+            if normal_force > self.max_force:
+                raise ValueError(
+                    f"`normal_force` must be <= the finger's limit {self.max_force:g} N, "
+                    f"got {normal_force:g}; the finger did not move"
+                )
+        else:
+            check_positive("depth", depth)
+        distances = self._distances(self._pose)
+        if not np.isfinite(distances).any() or np.nanmin(distances) > self.reach:
+            raise ValueError(
+                f"no object within the finger's reach ({self.reach * 1e3:g} mm) along the "
+                "sensor normal; the finger did not move"
+            )
+        first_touch = float(np.nanmin(distances))
+        nearest = self._nearest_object(self._pose)
+        heights = np.where(np.isfinite(distances), distances - first_touch, np.inf)
+        contact = solve_contact(
+            heights,
+            self._sensor.load_grid.spacing,
+            self._sensor.cover.material,
+            normal_force=normal_force,
+            indentation=depth,
+            indenter_material=nearest.material,
+            thickness=self._sensor.cover.thickness,
+            initial=self._last if self._last is not None and normal_force is not None else None,
+        )
+        if contact.normal_force > self.max_force:
+            raise ValueError(
+                f"`depth` {depth:g} m needs {contact.normal_force:.3g} N, beyond the finger's "
+                f"limit {self.max_force:g} N; the finger did not move"
+            )
+        self._last = contact
+        travel = first_touch + contact.indentation + nearest.support_travel(contact.normal_force)
+        return self._reading(contact, travel)
+
+    def slide(self, path: Any, *, speed: float, normal_force: float) -> list[ProbeReading]:
+        """Slide pressed through base-frame points (see `Probe.slide`)."""
+        points = as_finite_array("path", path, ndim=2)
+        if points.shape[1] != 3 or len(points) < 2:
+            raise ValueError(f"`path` must be (K >= 2, 3) base-frame points, got {points.shape}")
+        speed = check_positive("speed", speed)
+        lengths = np.linalg.norm(np.diff(points, axis=0), axis=1)
+        arc = np.concatenate([[0.0], np.cumsum(lengths)])
+        step = speed / self._sensor.frame_rate
+        samples = np.arange(0.0, arc[-1] + 1e-12, step)
+        start_pose, readings = self._pose.copy(), []
+        for distance in samples:
+            origin = np.array([np.interp(distance, arc, points[:, i]) for i in range(3)])
+            pose = start_pose.copy()
+            pose[:3, 3] = origin
+            last = self._last
+            self.move_to(pose)
+            self._last = last  # keep warm-starting along the path
+            readings.append(self.press(normal_force=normal_force))
+            self._time += 1.0 / self._sensor.frame_rate
+        return readings
+
+    def retract(self) -> None:
+        """Lift back to the approach pose."""
+        self._last = None
+
+    # --------------------------------------------------------------------- internals
+    def _cell_origins(self, pose: np.ndarray) -> np.ndarray:
+        x, y = self._sensor.load_grid.coordinates()
+        local = np.stack([x, y, np.zeros_like(x)], axis=-1)
+        return transform_points(pose, local.reshape(-1, 3)).reshape(*x.shape, 3)
+
+    def _distances(self, pose: np.ndarray) -> np.ndarray:
+        origins = self._cell_origins(pose)
+        normal = transform_directions(pose, [0.0, 0.0, 1.0])
+        distances = np.full(origins.shape[:-1], np.inf)
+        for item in self._scene:
+            np.minimum(distances, item.ray_distances(origins, normal), out=distances)
+        return distances
+
+    def _nearest_object(self, pose: np.ndarray) -> SceneObject:
+        origins = self._cell_origins(pose)
+        normal = transform_directions(pose, [0.0, 0.0, 1.0])
+        nearest = [float(np.min(item.ray_distances(origins, normal))) for item in self._scene]
+        return self._scene[int(np.argmin(nearest))]
+
+    def _reading(self, contact: ContactResult, travel: float) -> ProbeReading:
+        frame = self._sensor.frame_from_pressure(
+            contact.pressure, displacement=contact.displacement, rng=self._rng, contact=contact
+        )
+        pressed = self._pose.copy()
+        normal = transform_directions(self._pose, [0.0, 0.0, 1.0])
+        pressed[:3, 3] += travel * normal
+        # the object pushes the sensor back along -z_S; torque about the sensor origin
+        x, y = self._sensor.load_grid.coordinates()
+        cell = np.prod(self._sensor.load_grid.spacing)
+        forces = contact.pressure * cell
+        moment_x = float((y * forces).sum())
+        moment_y = float(-(x * forces).sum())
+        force_sensor = np.array([0.0, 0.0, -contact.normal_force])
+        torque_sensor = -np.array([moment_x, moment_y, 0.0])
+        wrench = np.concatenate(
+            [
+                transform_directions(pressed, force_sensor),
+                transform_directions(pressed, torque_sensor),
+            ]
+        )
+        return ProbeReading(frame, wrench, contact.normal_force, travel, pressed, self._time)

@@ -1,0 +1,236 @@
+"""Objects in the robot's workspace, and what a sensor at a given pose sees of them.
+
+Every object lies on a rigid table (the base frame's z = 0 plane, base z pointing up) at a
+pose in the base frame. A sensor at pose T_BS looks along its outward normal z_S; for each
+cell of its load grid the object's `ray_distances` says how far the object's surface is along
+that normal, which is the height map the contact solver needs.
+
+Two kinds of object:
+- `ProfileObject`: a flat-bottomed or lying object whose top surface is one of the indenter
+  profiles of `taxel.mechanics` (washers, edges, rims, textures, spheres on the table...).
+- `Box`: a solid box with rounded edges, for probing faces, edges and corners from any pose.
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from taxel._validation import check_positive
+from taxel.frames import as_pose, invert_pose, transform_directions, transform_points
+from taxel.mechanics import ElasticMaterial, Indenter, Sphere, effective_modulus
+
+__all__ = ["Box", "ProfileObject", "SceneObject", "make_ball"]
+
+_MISS = np.inf
+
+
+@dataclass(frozen=True, eq=False)
+class SceneObject(ABC):
+    """An object in the scene.
+
+    Attributes
+    ----------
+    name : str
+        What it is called in reports.
+    pose : numpy.ndarray
+        4x4 pose of the object's frame in the base frame.
+    material : ElasticMaterial or None
+        The object's elasticity near the contact; None for a rigid object.
+    """
+
+    name: str
+    pose: Any = field(default_factory=lambda: np.eye(4))
+    material: ElasticMaterial | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "pose", as_pose(self.pose, name="pose"))
+
+    @abstractmethod
+    def local_distances(self, origins: np.ndarray, direction: np.ndarray) -> np.ndarray:
+        """Distance along `direction` from each origin to the surface, in the object frame."""
+
+    def ray_distances(self, origins: Any, direction: Any) -> np.ndarray:
+        """Distance [m] from base-frame points along a base-frame unit direction to the object.
+
+        +inf where the ray misses; negative where the origin is inside the object.
+        """
+        to_object = invert_pose(self.pose)
+        local_origins = transform_points(to_object, np.asarray(origins, float).reshape(-1, 3))
+        local_direction = transform_directions(to_object, np.asarray(direction, float))
+        return self.local_distances(local_origins, local_direction).reshape(np.shape(origins)[:-1])
+
+    def support_travel(self, normal_force: float) -> float:
+        """Extra travel [m] of a finger pressing with `normal_force` from the object's support.
+
+        An elastic ball also flattens against the table it lies on; rigid or flat-bottomed
+        objects add nothing.
+        """
+        return 0.0
+
+
+@dataclass(frozen=True, eq=False)
+class ProfileObject(SceneObject):
+    """An object lying on the table, its top surface given by an indenter profile.
+
+    The surface in the object frame is z = top - profile(u, v): `top` [m] is the height of
+    the object's highest point above the table, and the profile's heights are measured down
+    from it (as `taxel.mechanics` indenters are). The object is meant to be pressed from
+    above (the sensor facing down, tilted by a modest angle at most).
+
+    Parameters
+    ----------
+    name, pose, material
+        As `SceneObject`.
+    profile : Indenter
+        The top surface.
+    top : float
+        Height of the highest point above the table [m].
+    support_radius : float, optional
+        For a ball on the table: its radius [m]; the ball then also flattens (Hertz) against
+        the rigid table when pressed.
+    """
+
+    profile: Indenter | None = None
+    top: float = 0.01
+    support_radius: float | None = None
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if not isinstance(self.profile, Indenter):
+            raise TypeError(f"`profile` must be an Indenter, got {self.profile!r}")
+        check_positive("top", self.top)
+        if self.support_radius is not None:
+            check_positive("support_radius", self.support_radius)
+
+    def local_distances(self, origins: np.ndarray, direction: np.ndarray) -> np.ndarray:
+        if direction[2] >= -1e-6:
+            raise ValueError("a profile object must be approached from above (sensor facing down)")
+        # fixed-point iteration on the height field; exact in one step for a vertical ray
+        t = (origins[:, 2] - self.top) / -direction[2]
+        for _ in range(8):
+            point = origins + t[:, None] * direction
+            surface = self.top - self.profile.local_heights(point[:, 0], point[:, 1])
+            t_next = (origins[:, 2] - surface) / -direction[2]
+            if np.allclose(t_next, t, rtol=0, atol=1e-10, equal_nan=True):
+                t = t_next
+                break
+            t = np.where(np.isfinite(t_next), t_next, t)
+        point = origins + t[:, None] * direction
+        hit = np.isfinite(self.profile.local_heights(point[:, 0], point[:, 1]))
+        return np.where(hit & np.isfinite(t), t, _MISS)
+
+    def support_travel(self, normal_force: float) -> float:
+        if self.support_radius is None or self.material is None:
+            return 0.0
+        modulus = effective_modulus(self.material)  # against a rigid table
+        radius = (3 * normal_force * self.support_radius / (4 * modulus)) ** (1 / 3)
+        return radius**2 / self.support_radius
+
+
+def make_ball(
+    name: str,
+    radius: float,
+    material: ElasticMaterial | None = None,
+    *,
+    position: tuple[float, float] = (0.0, 0.0),
+) -> ProfileObject:
+    """A ball of `radius` [m] lying on the table at (x, y) [m] of the base frame.
+
+    An elastic ball flattens at both contacts: against the sensor (through the contact
+    solver, with the ball as the elastic indenter) and against the table (Hertz).
+
+    Examples
+    --------
+    >>> acrylic = make_ball("acrylic sphere", 6.25e-3, ElasticMaterial(3.2e9, 0.37))
+    >>> round(acrylic.top * 1e3, 2)
+    12.5
+    """
+    pose = np.eye(4)
+    pose[:2, 3] = position
+    return ProfileObject(
+        name=name,
+        pose=pose,
+        material=material,
+        profile=Sphere(radius),
+        top=2 * radius,
+        support_radius=radius,
+    )
+
+
+def _rounded_box_distance(points: np.ndarray, half: np.ndarray, radius: float) -> np.ndarray:
+    """Signed distance to a box of half-sizes `half` with edges rounded by `radius`."""
+    q = np.abs(points) - (half - radius)
+    outside = np.linalg.norm(np.maximum(q, 0.0), axis=-1)
+    inside = np.minimum(q.max(axis=-1), 0.0)
+    return outside + inside - radius
+
+
+@dataclass(frozen=True, eq=False)
+class Box(SceneObject):
+    """A solid box with rounded edges, its frame at the centre of its bottom face.
+
+    Parameters
+    ----------
+    name, pose, material
+        As `SceneObject`.
+    size : tuple of float
+        Edge lengths (x, y, z) [m].
+    edge_radius : float, default 0.5e-3
+        Radius of the rounded edges and corners [m].
+
+    Examples
+    --------
+    >>> box = Box("box", size=(0.1, 0.06, 0.04))
+    >>> origins = np.array([[0.0, 0.0, 0.05]])
+    >>> float(box.ray_distances(origins, [0.0, 0.0, -1.0])[0])  # 1 cm above the top face
+    0.01
+    """
+
+    size: tuple[float, float, float] = (0.1, 0.1, 0.05)
+    edge_radius: float = 0.5e-3
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if len(self.size) != 3:
+            raise ValueError(f"`size` must have three lengths, got {self.size!r}")
+        for length in self.size:
+            check_positive("size", length)
+        check_positive("edge_radius", self.edge_radius, allow_zero=True)
+        if 2 * self.edge_radius >= min(self.size):
+            raise ValueError(
+                f"`edge_radius` must be < half the smallest size, got {self.edge_radius:g}"
+            )
+
+    @property
+    def corners(self) -> np.ndarray:
+        """The eight corners of the sharp box in the base frame [m], shape (8, 3)."""
+        hx, hy = self.size[0] / 2, self.size[1] / 2
+        local = [
+            (sx * hx, sy * hy, z) for sx in (-1, 1) for sy in (-1, 1) for z in (0, self.size[2])
+        ]
+        return transform_points(self.pose, np.array(local))
+
+    def local_distances(self, origins: np.ndarray, direction: np.ndarray) -> np.ndarray:
+        half = np.asarray(self.size) / 2
+        centre = np.array([0.0, 0.0, half[2]])
+        start = _rounded_box_distance(origins - centre, half, self.edge_radius)
+        t = np.zeros(len(origins))
+        reach = 10 * float(np.linalg.norm(self.size)) + float(np.abs(start).max())
+        active = np.ones(len(origins), dtype=bool)
+        for _ in range(400):  # sphere tracing: safe steps of the distance to the surface
+            distance = _rounded_box_distance(
+                origins + t[:, None] * direction - centre, half, self.edge_radius
+            )
+            active &= (distance > 1e-10) & (t < reach)
+            if not active.any():
+                break
+            t = np.where(active, t + distance, t)
+        distance = _rounded_box_distance(
+            origins + t[:, None] * direction - centre, half, self.edge_radius
+        )
+        result = np.where(np.abs(distance) < 1e-8, t, _MISS)
+        return np.where(start < 0, start, result)  # inside: report the penetration

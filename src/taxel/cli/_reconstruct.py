@@ -1,0 +1,107 @@
+"""``taxel reconstruct``: a pressure map from one tactile frame (issue 4)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["register"]
+
+
+def _run(arguments: argparse.Namespace) -> int:
+    from taxel.reconstruction import (
+        FORWARD_MODEL_PRESETS,
+        forward_model_preset,
+        reconstruct,
+    )
+
+    if arguments.sensor not in FORWARD_MODEL_PRESETS:
+        raise ValueError(
+            f"`--sensor` must be one of {', '.join(FORWARD_MODEL_PRESETS)}; "
+            f"got {arguments.sensor!r}"
+        )
+    path = Path(arguments.frame)
+    if not path.is_file():
+        raise ValueError(f"`FRAME` must be an existing .npy file, got {str(path)!r}")
+    try:
+        frame = np.load(path, allow_pickle=False)
+    except ValueError as error:
+        raise ValueError(f"`FRAME` is not a readable .npy array: {error}") from None
+    spec = forward_model_preset(arguments.sensor, oversampling=arguments.oversampling)
+    result = reconstruct(
+        frame,
+        spec,
+        method=arguments.method,
+        order=arguments.order,
+        regularization=arguments.regularization,
+        noise_level=arguments.noise_level,
+    )
+    np.save(arguments.out, result.pressure)
+    summary = {
+        "sensor": arguments.sensor,
+        "method": result.method,
+        "order": result.order,
+        "rule": result.rule,
+        "regularization": _plain(result.regularization),
+        "residual_norm": _plain(result.residual_norm),
+        "solution_norm": _plain(result.solution_norm),
+        "normal_force": _plain(result.normal_force),
+        "load_shape": list(spec.load_shape),
+        "load_pitch": spec.load_pitch,
+        "converged": result.converged,
+        "out": str(arguments.out),
+    }
+    if arguments.json:
+        sys.stdout.write(json.dumps(summary) + "\n")
+    else:
+        lam = np.atleast_1d(result.regularization)
+        sys.stdout.write(
+            f"{result.method} (order {result.order}), lambda = {_format(lam)} ({result.rule})\n"
+            f"residual norm {_format(np.atleast_1d(result.residual_norm))}, "
+            f"solution norm {_format(np.atleast_1d(result.solution_norm))}, "
+            f"force {_format(np.atleast_1d(result.normal_force))} N\n"
+            f"pressure map {result.pressure.shape} [Pa] written to {arguments.out}\n"
+        )
+    return 0
+
+
+def _plain(value):
+    array = np.asarray(value, dtype=float)
+    return float(array) if array.ndim == 0 else array.tolist()
+
+
+def _format(values: np.ndarray) -> str:
+    text = ", ".join(f"{v:.4g}" for v in values[:4])
+    return text + (", ..." if values.size > 4 else "")
+
+
+def register(commands: argparse._SubParsersAction) -> None:
+    """Add ``taxel reconstruct`` to the command line."""
+    parser = commands.add_parser(
+        "reconstruct",
+        help="recover the pressure map behind a tactile frame (regularized inverse)",
+        description="Recover the pressure on the load grid from calibrated taxel readings "
+        "(a .npy frame, or a batch of frames) with regularization chosen automatically.",
+    )
+    parser.add_argument("frame", metavar="FRAME.npy", help="calibrated readings, rows x cols")
+    parser.add_argument("--sensor", required=True, metavar="PRESET", help="vhdta128, resistive16")
+    parser.add_argument(
+        "--method", default="tikhonov", choices=("tikhonov", "tsvd", "nonneg", "tv")
+    )
+    parser.add_argument("--order", default=0, type=int, choices=(0, 1, 2))
+    parser.add_argument(
+        "--lambda",
+        dest="regularization",
+        default="gcv",
+        metavar="gcv|lcurve|discrepancy|VALUE",
+        help="parameter rule, or lambda >= 0 (mu [Pa] for tv); default gcv",
+    )
+    parser.add_argument("--noise-level", type=float, default=None, help="reading noise std")
+    parser.add_argument("--oversampling", type=int, default=1, help="load cells per taxel")
+    parser.add_argument("--out", required=True, metavar="PRESSURE.npy", help="output map")
+    parser.add_argument("--json", action="store_true", help="print a JSON summary")
+    parser.set_defaults(handler=_run)

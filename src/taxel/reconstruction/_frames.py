@@ -1,0 +1,64 @@
+"""Validation of frames and of the regularization argument, shared by every solver."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from taxel._validation import check_positive
+from taxel.reconstruction._choice import RULES
+from taxel.reconstruction._spec import ForwardModelSpec
+
+__all__ = ["as_frames", "parse_regularization", "restore_batch"]
+
+
+def as_frames(frames: Any, spec: ForwardModelSpec) -> tuple[np.ndarray, tuple[int, ...]]:
+    """Frames as a float (B, rows, cols) array and the original batch shape.
+
+    NaN or inf is allowed only at dead taxels (they are excluded from every fit and set to
+    zero here); anywhere else it is an error naming `frame`.
+    """
+    try:
+        array = np.array(frames, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TypeError(f"`frame` must be numeric, got {type(frames).__name__}") from None
+    if array.ndim < 2 or array.shape[-2:] != spec.shape:
+        raise ValueError(
+            f"`frame` must have shape {spec.shape} (or a batch of them) for this sensor, "
+            f"got {array.shape}"
+        )
+    batch = array.shape[:-2]
+    array = array.reshape(-1, *spec.shape)
+    live = spec.live_taxels
+    bad = ~np.isfinite(array) & live
+    if bad.any():
+        raise ValueError(
+            f"`frame` must be finite at live taxels, got {int(bad.sum())} NaN or inf value(s)"
+        )
+    if spec.dead_taxels:
+        array[:, ~live] = 0.0
+    return array, batch
+
+
+def restore_batch(values: np.ndarray, batch: tuple[int, ...]) -> Any:
+    """Per-frame values (B, ...) back to the caller's batch shape; scalars for one frame."""
+    if batch == ():
+        item = values[0]
+        return float(item) if np.ndim(item) == 0 else item
+    return values.reshape(*batch, *values.shape[1:])
+
+
+def parse_regularization(value: Any) -> tuple[str, float | None]:
+    """("given", lambda) for a number >= 0, (rule, None) for a rule name."""
+    if isinstance(value, str):
+        if value in RULES:
+            return value, None
+        try:
+            value = float(value)
+        except ValueError:
+            raise ValueError(
+                f"`regularization` must be a number >= 0 or one of {', '.join(RULES)}; "
+                f"got {value!r}"
+            ) from None
+    return "given", check_positive("regularization", value, allow_zero=True)

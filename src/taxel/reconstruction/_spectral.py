@@ -1,0 +1,258 @@
+r"""Spectral factorizations of the regularized problem, built once per sensor and penalty.
+
+Tikhonov regularization of any order, min |A x - b|^2 + lambda^2 c |L x|^2, reduces to
+independent scalar problems on "generalized modes" with eigenvalues g_i: the filter factor
+is f_i = g_i / (g_i + lambda^2) and the solution is a fixed linear synthesis of f_i beta_i.
+
+Fast (reflective model, DCT): fine DCT mode j reaches one coarse mode mu with weight s_j;
+per coarse mode the problem is min (s - beta)^2 + w s^2 / g with g = sum_j s_j^2 / l_j
+(l_j the penalty eigenvalue), and y_j = s s_j / (l_j g). Dense (any model, small grids):
+with c = A 1 the image of the penalty's null space (constants) and A~ = (I - c c^T/|c|^2) A,
+the SVD of the standard form A~ M^(+1/2) = U diag(sqrt g) V^T gives the same form
+(M^(+1/2) applied by DCT).
+Here c = |A|^2 / |L|^2 makes lambda dimensionless: lambda = 1 weighs the penalty like the
+largest singular value of the data term.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy import fft, linalg
+
+from taxel.reconstruction._model import dense_penalty, fold_1d, penalty_eigenvalues
+from taxel.reconstruction._operator import SensorOperator
+
+__all__ = ["DenseSpectrum", "FastSpectrum", "Spectrum", "build_spectrum"]
+
+
+def _dct(values: np.ndarray) -> np.ndarray:
+    return fft.dctn(values, norm="ortho", axes=(-2, -1), workers=1)
+
+
+def _idct(values: np.ndarray) -> np.ndarray:
+    return fft.idctn(values, norm="ortho", axes=(-2, -1), workers=1)
+
+
+class Spectrum:
+    """Common interface of the factorizations (see the module docstring).
+
+    Attributes
+    ----------
+    g : numpy.ndarray, shape (r,)
+        Normalized generalized eigenvalues of the reachable modes (max 1 for order 0).
+    n_free : int
+        Unpenalized directions (the mean, for orders 1 and 2): their filter factor is 1.
+    count : int
+        Number of readings in the fit (live taxels).
+    scale : float
+        c, so that the penalty is lambda^2 c |L x|^2.
+    exact_mask : bool
+        False when dead taxels exist but the factorization is of the full array (fast);
+        solvers then handle dead taxels iteratively.
+    """
+
+    g: np.ndarray
+    n_free: int
+    count: int
+    scale: float
+    exact_mask: bool
+    load_shape: tuple[int, int]
+
+    norm_squared: float
+    penalty: np.ndarray
+
+    def apply_penalty(self, values: np.ndarray) -> np.ndarray:
+        """M x = L^T L x on the load grid (Neumann boundaries, diagonal in the DCT)."""
+        return _idct(_dct(values) * self.penalty)
+
+    def analyze(self, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(beta (B, r), free (B, n_free), unreachable energy (B,)) of frames (B, rows, cols)."""
+        raise NotImplementedError
+
+    def synthesize(self, filtered: np.ndarray, free: np.ndarray) -> np.ndarray:
+        """Pressure (B, *load_shape) from filtered coefficients f * beta and the free part."""
+        raise NotImplementedError
+
+    def shifted_solve(self, rhs: np.ndarray, alpha: float, beta: float) -> np.ndarray:
+        """Solve (A^T A + alpha M + beta I) x = rhs on the load grid (M = L^T L)."""
+        raise NotImplementedError
+
+
+class FastSpectrum(Spectrum):
+    """DCT-diagonal factorization of the reflective model (any oversampling)."""
+
+    def __init__(self, operator: SensorOperator, order: int) -> None:
+        spec = operator.spec
+        k = spec.oversampling
+        rows, cols = spec.shape
+        self.load_shape = spec.load_shape
+        self.order = order
+        self.count = rows * cols
+        self.exact_mask = not spec.dead_taxels
+        self._k = k
+        row_index, row_weight = fold_1d(rows, k)
+        col_index, col_weight = fold_1d(cols, k)
+        weight = row_weight[:, None] * col_weight[None, :] * operator.eigenvalues
+        valid = (row_index[:, None] >= 0) & (col_index[None, :] >= 0)
+        group = np.where(valid, row_index[:, None] * cols + col_index[None, :], 0)
+        penalty = penalty_eigenvalues(self.load_shape, order)
+        self._weight, self._group, self.penalty = weight, group, penalty
+        self._group_flat = group.ravel()
+        self._members_of_mean = np.flatnonzero((group.ravel() == 0) & valid.ravel())
+        norm_a = np.bincount(self._group_flat, (weight**2).ravel(), minlength=rows * cols)
+        self.norm_squared = float(norm_a.max())
+        self.scale = self.norm_squared / float(penalty.max())
+        free = (penalty == 0) & valid  # only the constant fine mode, which reaches mode 0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(free | ~valid, 0.0, weight**2 / penalty)
+        g_real = np.bincount(self._group_flat, ratio.ravel(), minlength=rows * cols)
+        self.n_free = int(free.any())
+        self._g_real = g_real
+        self.g = g_real[self.n_free :] / self.scale
+        with np.errstate(divide="ignore", invalid="ignore"):
+            expansion = weight / (penalty * g_real[group])
+        expansion = np.where(valid & ~free & np.isfinite(expansion), expansion, 0.0)
+        if self.n_free:  # the mean's group: only the constant mode carries it, unpenalized
+            expansion = np.where(group == 0, 0.0, expansion)
+            expansion = np.where(free, 1.0 / np.where(free, weight, 1.0), expansion)
+        self._expansion = expansion
+        self._factor_cache: dict[tuple[float, float], np.ndarray] = {}
+
+    def analyze(self, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        coefficients = _dct(frames).reshape(frames.shape[0], -1)
+        free = coefficients[:, : self.n_free]
+        return coefficients[:, self.n_free :], free, np.zeros(frames.shape[0])
+
+    def synthesize(self, filtered: np.ndarray, free: np.ndarray) -> np.ndarray:
+        batch = filtered.shape[0]
+        full = np.concatenate([free, filtered], axis=1) if self.n_free else filtered
+        if self._k == 1:
+            fine = full.reshape(batch, *self.load_shape) * self._expansion
+        else:
+            fine = full[:, self._group_flat].reshape(batch, *self.load_shape) * self._expansion
+        return _idct(fine)
+
+    def shifted_solve(self, rhs: np.ndarray, alpha: float, beta: float) -> np.ndarray:
+        transformed = _dct(rhs)
+        diagonal = alpha * self.penalty + beta
+        weight = self._weight
+        if self._k == 1:
+            return _idct(transformed / (weight**2 + diagonal))
+        # Sherman-Morrison per coarse group: (s s^T + D)^-1 r
+        with np.errstate(divide="ignore", invalid="ignore"):
+            scaled = np.where(diagonal > 0, weight / diagonal, 0.0)
+            inverse = np.where(diagonal > 0, 1.0 / diagonal, 0.0)
+        count = self._g_real.size
+        projection = np.bincount(self._group_flat, (scaled * transformed).ravel(), count)
+        energy = np.bincount(self._group_flat, (scaled * weight).ravel(), count)
+        correction = projection / (1.0 + energy)
+        result = inverse * transformed - scaled * correction[self._group]
+        # the group of the mean may hold a zero of D: solve it directly (at most k^2 modes)
+        members = self._members_of_mean
+        s = weight.ravel()[members]
+        system = np.outer(s, s) + np.diag(diagonal.ravel()[members])
+        flat = result.reshape(-1)
+        flat[members] = np.linalg.lstsq(system, transformed.ravel()[members], rcond=None)[0]
+        return _idct(result)
+
+
+class DenseSpectrum(Spectrum):
+    """Eigen-factorization of a dense operator (any boundary model; dead taxels removed)."""
+
+    def __init__(self, operator: SensorOperator, order: int) -> None:
+        spec = operator.spec
+        self.load_shape = spec.load_shape
+        self.order = order
+        self._live = spec.live_taxels.ravel()
+        full = operator.to_matrix()
+        matrix = full[self._live]
+        self._matrix = matrix
+        self.count = int(matrix.shape[0])
+        self.exact_mask = True
+        penalty = penalty_eigenvalues(self.load_shape, order)
+        self.penalty = penalty
+        # |A| of the whole array: lambda means the same with or without dead taxels
+        self.norm_squared = float(np.linalg.eigvalsh(full @ full.T)[-1])
+        self.scale = self.norm_squared / float(penalty.max())
+        cells = matrix.shape[1]
+        if order == 0:
+            self.n_free = 0
+            reduced = matrix
+            self._free_basis = np.zeros((cells, 0))
+            self._image_of_mean = np.zeros((self.count, 0))
+        else:
+            self.n_free = 1
+            mean = np.full(cells, 1.0 / np.sqrt(cells))
+            image = matrix @ mean
+            norm = float(np.linalg.norm(image))
+            unit = image / norm
+            reduced = matrix - np.outer(unit, unit @ matrix)
+            self._free_basis = (mean / norm)[:, None]
+            self._image_of_mean = unit[:, None]
+        # standard form K = A~ M^(+1/2): its SVD keeps relative accuracy in sqrt(g), where an
+        # eigen-decomposition of A~ M^+ A~^T would lose the small g below eps * g_max
+        standard = self._penalty_power(reduced.T, -0.5).T if order else reduced
+        vectors, singular, right = np.linalg.svd(standard, full_matrices=False)
+        keep = singular > singular[0] * max(standard.shape) * np.finfo(float).eps
+        singular, vectors, right = singular[keep], vectors[:, keep], right[keep]
+        expansion = right.T / singular
+        if order:
+            expansion = self._penalty_power(expansion, -0.5)
+            # y -> y + (mean) a, with a fitting what A y leaves of b along A 1
+            expansion -= self._free_basis @ (self._image_of_mean.T @ (matrix @ expansion))
+        self._vectors, self._expansion = vectors, expansion
+        self.g = singular**2 / self.scale
+        self._factor_cache: dict[tuple[float, float], tuple] = {}
+
+    def _penalty_power(self, columns: np.ndarray, power: float) -> np.ndarray:
+        """(M^+)^(-power) applied to each column (load-grid vectors), through the DCT."""
+        cube = columns.T.reshape(-1, *self.load_shape)
+        with np.errstate(divide="ignore"):
+            factor = np.where(self.penalty > 0, np.abs(self.penalty) ** power, 0.0)
+        return _idct(_dct(cube) * factor).reshape(cube.shape[0], -1).T
+
+    def live(self, frames: np.ndarray) -> np.ndarray:
+        """The live readings of frames (B, rows, cols) as (B, count)."""
+        return frames.reshape(frames.shape[0], -1)[:, self._live]
+
+    def analyze(self, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        data = self.live(frames)
+        beta = data @ self._vectors
+        free = data @ self._image_of_mean
+        if beta.shape[1] + self.n_free >= self.count:  # the modes span every reading
+            return beta, free, np.zeros(data.shape[0])
+        rest = np.einsum("ij,ij->i", data, data) - np.einsum("ij,ij->i", beta, beta)
+        rest -= np.einsum("ij,ij->i", free, free)
+        return beta, free, np.maximum(rest, 0.0)
+
+    def synthesize(self, filtered: np.ndarray, free: np.ndarray) -> np.ndarray:
+        flat = filtered @ self._expansion.T + free @ self._free_basis.T
+        return flat.reshape(filtered.shape[0], *self.load_shape)
+
+    def shifted_solve(self, rhs: np.ndarray, alpha: float, beta: float) -> np.ndarray:
+        key = (float(alpha), float(beta))
+        if key not in self._factor_cache:
+            if len(self._factor_cache) > 4:
+                self._factor_cache.clear()
+            system = self._matrix.T @ self._matrix + beta * np.eye(self._matrix.shape[1])
+            if alpha:
+                system += alpha * dense_penalty(self.load_shape, self.order)
+            self._factor_cache[key] = linalg.cho_factor(system)
+        solution = linalg.cho_solve(self._factor_cache[key], rhs.reshape(-1))
+        return solution.reshape(self.load_shape)
+
+    def normal_rhs(self, frames: np.ndarray) -> np.ndarray:
+        """A_live^T b for one frame (rows, cols)."""
+        return (self.live(frames[None])[0] @ self._matrix).reshape(self.load_shape)
+
+
+def build_spectrum(operator: SensorOperator, order: int) -> Spectrum:
+    """The factorization matching an operator's representation."""
+    if operator.representation == "dense":
+        return DenseSpectrum(operator, order)
+    if operator.boundary != "reflect":
+        raise ValueError(
+            "`boundary` 'zero' has no fast factorization; use representation='dense' "
+            "(small grids) or boundary='reflect'"
+        )
+    return FastSpectrum(operator, order)

@@ -1,0 +1,132 @@
+"""The scene, the probe interface and the simulated finger."""
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from taxel.active import Box, Probe, ProfileObject, SimulatedFinger, make_ball
+from taxel.frames import make_pose, transform_points
+from taxel.mechanics import ElasticMaterial, hertz_sphere, make_indenter
+from taxel.sensor import make_sensor
+
+DOWN = np.diag([1.0, -1.0, -1.0])  # sensor z pointing down at the table
+
+
+@pytest.fixture(scope="module")
+def sensor():
+    return make_sensor("resistive16")
+
+
+def test_finger_is_a_probe(sensor):
+    finger = SimulatedFinger(sensor, [make_ball("ball", 5e-3)], make_pose(DOWN, [0, 0, 0.02]))
+    assert isinstance(finger, Probe)
+
+
+def test_ray_distances_of_box_faces_and_ball():
+    box = Box("box", size=(0.1, 0.08, 0.04), pose=make_pose(translation=[0.2, 0.0, 0.0]))
+    origins = np.array([[0.2, 0.0, 0.05], [0.2, 0.01, 0.1], [0.5, 0.0, 0.05]])
+    distances = box.ray_distances(origins, [0.0, 0.0, -1.0])
+    assert distances[:2] == pytest.approx([0.01, 0.06], abs=1e-9)
+    assert np.isinf(distances[2])
+    sideways = box.ray_distances(np.array([[0.1, 0.0, 0.02]]), [1.0, 0.0, 0.0])
+    assert sideways[0] == pytest.approx(0.05, abs=1e-9)
+    ball = make_ball("ball", 5e-3, position=(0.01, 0.0))
+    above = ball.ray_distances(np.array([[0.01, 0.0, 0.03], [0.013, 0.0, 0.03]]), [0, 0, -1])
+    assert above[0] == pytest.approx(0.02, abs=1e-12)
+    assert above[1] == pytest.approx(0.03 - (5e-3 + np.sqrt(25e-6 - 9e-6)), abs=1e-9)
+    assert len(box.corners) == 8
+
+
+# resistive16 has cell centres at odd millimetres: put apexes there, so that first touch on
+# the grid is the true first touch
+APEX = (0.001, -0.001)  # base frame; the sensor's (1 mm, 1 mm) when facing down at the origin
+
+
+def test_press_a_rigid_ball_travels_to_touch_plus_indentation(sensor):
+    ball = make_ball("steel ball", 6.25e-3, position=APEX)
+    finger = SimulatedFinger(sensor, [ball], make_pose(DOWN, [0.0, 0.0, 0.03]))
+    reading = finger.press(normal_force=4.0)
+    assert reading.normal_force == pytest.approx(4.0, rel=1e-9)
+    touch = 0.03 - 12.5e-3
+    assert touch < reading.travel < touch + sensor.cover.thickness
+    assert reading.travel - touch == pytest.approx(reading.frame.contact.indentation)
+    # the object pushes the sensor up: +z in the base frame, with no net torque (centred)
+    assert reading.wrench[:3] == pytest.approx([0.0, 0.0, 4.0], abs=1e-9)
+    assert reading.pose[2, 3] == pytest.approx(0.03 - reading.travel)
+
+
+def test_elastic_ball_flattens_on_both_sides(sensor):
+    soft = ElasticMaterial(0.45e6, 0.5)
+    ball = make_ball("racquet ball", 28.5e-3, soft)
+    finger = SimulatedFinger(make_sensor("vhdta128"), [ball], make_pose(DOWN, [0, 0, 0.06]))
+    reading = finger.press(normal_force=12.0)
+    # the ball's own flattening at the table is Hertz's, against a rigid flat
+    table = hertz_sphere(12.0, 28.5e-3, soft.plane_strain_modulus).indentation
+    assert ball.support_travel(12.0) == pytest.approx(table, rel=1e-12)
+    squeeze = reading.travel - (0.06 - 57e-3)
+    assert squeeze > 2 * table * 0.8  # the sensor side flattens about as much again
+
+
+def test_off_centre_contact_gives_a_torque(sensor):
+    ball = make_ball("ball", 6.25e-3, position=(0.005, 0.0))
+    finger = SimulatedFinger(sensor, [ball], make_pose(DOWN, [0.0, 0.0, 0.02]))
+    reading = finger.press(normal_force=2.0)
+    torque = reading.wrench[3:]
+    lever = np.cross([0.005, 0.0, 0.0], reading.wrench[:3])  # about the sensor origin
+    assert torque == pytest.approx(lever, abs=2e-4 * np.abs(lever).max())
+
+
+def test_tilted_finger_on_a_box_face_touches_at_a_corner_of_the_pad():
+    box = Box("box", size=(0.2, 0.2, 0.04))
+    rotation = Rotation.from_euler("xyz", [180 + 4, 0, 0], degrees=True).as_matrix()
+    finger = SimulatedFinger(make_sensor("resistive16"), [box], make_pose(rotation, [0, 0, 0.045]))
+    reading = finger.press(normal_force=3.0)
+    rows = np.nonzero(reading.frame.contact.contact.any(axis=1))[0]
+    assert rows.max() - rows.min() < 10  # a band along one side, not the whole pad
+    assert reading.frame.contact.converged
+
+
+def test_position_control_and_retract(sensor):
+    ball = make_ball("ball", 6.25e-3, position=APEX)
+    finger = SimulatedFinger(sensor, [ball], make_pose(DOWN, [0.0, 0.0, 0.02]))
+    reading = finger.press(depth=0.2e-3)
+    assert reading.travel == pytest.approx(0.02 - 12.5e-3 + 0.2e-3)
+    finger.retract()
+    assert finger.pose[2, 3] == pytest.approx(0.02)
+
+
+def test_slide_reads_one_frame_per_period(sensor):
+    plate = ProfileObject("foam", profile=make_indenter("foam"), top=0.01)
+    finger = SimulatedFinger(sensor, [plate], make_pose(DOWN, [0.0, 0.0, 0.011]))
+    path = np.array([[0.0, 0.0, 0.011], [0.005, 0.0, 0.011]])
+    readings = finger.slide(path, speed=0.05, normal_force=2.0)
+    assert len(readings) == int(0.005 / (0.05 / sensor.frame_rate)) + 1
+    assert np.diff([r.time for r in readings]) == pytest.approx(1 / sensor.frame_rate)
+    assert all(r.normal_force == pytest.approx(2.0) for r in readings)
+
+
+def test_bad_commands_leave_the_probe_safe(sensor):
+    ball = make_ball("ball", 6.25e-3)
+    start = make_pose(DOWN, [0.0, 0.0, 0.02])
+    finger = SimulatedFinger(sensor, [ball], start)
+    with pytest.raises(ValueError, match="`normal_force` must be <= the finger's limit"):
+        finger.press(normal_force=1e4)
+    with pytest.raises(ValueError, match="inside an object"):
+        finger.move_to(make_pose(DOWN, [0.0, 0.0, 0.005]))
+    assert np.array_equal(finger.pose, start)
+    finger.move_to(make_pose(DOWN, [0.5, 0.0, 0.02]))
+    with pytest.raises(ValueError, match="no object within the finger's reach"):
+        finger.press(normal_force=1.0)
+    with pytest.raises(ValueError, match="exactly one of"):
+        finger.press()
+
+
+def test_contact_point_maps_to_the_base_frame(sensor):
+    ball = make_ball("ball", 6.25e-3, position=(0.1, 0.05))
+    pose = make_pose(DOWN, [0.099, 0.051, 0.02])  # the apex under the cell at (1, 1) mm
+    finger = SimulatedFinger(sensor, [ball], pose)
+    reading = finger.press(normal_force=2.0)
+    top = transform_points(reading.pose, [0.0, 0.0, 0.0])
+    # the pressed sensor origin sits on the ball's (indented) top
+    assert top[:2] == pytest.approx([0.099, 0.051], abs=1e-12)
+    assert top[2] == pytest.approx(12.5e-3 - reading.frame.contact.indentation, abs=1e-9)

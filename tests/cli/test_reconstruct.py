@@ -1,0 +1,112 @@
+"""``taxel reconstruct``: writes the map, prints lambda and norms, one-line errors."""
+
+import json
+
+import numpy as np
+import pytest
+
+from taxel.cli import main
+from taxel.reconstruction import forward_operator
+
+
+@pytest.fixture
+def frame_file(tmp_path):
+    truth = np.zeros((16, 16))
+    truth[5:8, 6:9] = 40e3
+    frame = forward_operator("resistive16").apply(truth)
+    frame += np.random.default_rng(0).normal(0, 1e3, frame.shape)
+    path = tmp_path / "frame.npy"
+    np.save(path, frame)
+    return path
+
+
+def test_writes_the_pressure_map_and_reports(frame_file, tmp_path, capsys):
+    out = tmp_path / "pressure.npy"
+    code = main(
+        [
+            "reconstruct",
+            str(frame_file),
+            "--sensor",
+            "resistive16",
+            "--order",
+            "1",
+            "--out",
+            str(out),
+        ]
+    )
+    assert code == 0
+    assert np.load(out).shape == (16, 16)
+    text = capsys.readouterr().out
+    assert "lambda = " in text and "(gcv)" in text and "residual norm" in text
+
+
+@pytest.mark.parametrize("method", ["tikhonov", "tsvd", "nonneg", "tv"])
+def test_json_summary(frame_file, tmp_path, capsys, method):
+    out = tmp_path / "p.npy"
+    arguments = [
+        "reconstruct",
+        str(frame_file),
+        "--sensor",
+        "resistive16",
+        "--method",
+        method,
+        "--lambda",
+        "discrepancy",
+        "--noise-level",
+        "1000",
+        "--json",
+        "--out",
+        str(out),
+    ]
+    assert main(arguments) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["method"] == method and summary["rule"] == "discrepancy"
+    assert summary["regularization"] > 0 and summary["residual_norm"] > 0
+    assert summary["normal_force"] == pytest.approx(0.1 * 9 * 4e-6 * 40e3 * 10, rel=0.3)
+
+
+def test_a_given_lambda_and_oversampling(frame_file, tmp_path, capsys):
+    out = tmp_path / "p.npy"
+    arguments = [
+        "reconstruct",
+        str(frame_file),
+        "--sensor",
+        "resistive16",
+        "--lambda",
+        "0.05",
+        "--oversampling",
+        "2",
+        "--json",
+        "--out",
+        str(out),
+    ]
+    assert main(arguments) == 0
+    assert json.loads(capsys.readouterr().out)["regularization"] == 0.05
+    assert np.load(out).shape == (32, 32)
+
+
+@pytest.mark.parametrize(
+    "extra, message",
+    [
+        (["--sensor", "vhdta128"], "`frame` must have shape (128, 128)"),
+        (["--sensor", "gelsight"], "`--sensor` must be one of vhdta128, harmon10x20, resistive16"),
+        (["--sensor", "resistive16", "--lambda", "-2"], "`regularization` must be >= 0"),
+        (["--sensor", "resistive16", "--lambda", "oracle"], "`regularization` must be a number"),
+    ],
+)
+def test_errors_are_one_line_and_exit_2(frame_file, tmp_path, capsys, extra, message):
+    code = main(["reconstruct", str(frame_file), *extra, "--out", str(tmp_path / "p.npy")])
+    assert code == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and message in error and "Traceback" not in error
+
+
+def test_nan_frame_and_missing_file(tmp_path, capsys):
+    bad = tmp_path / "bad.npy"
+    np.save(bad, np.full((16, 16), np.nan))
+    out = str(tmp_path / "p.npy")
+    assert main(["reconstruct", str(bad), "--sensor", "resistive16", "--out", out]) == 2
+    assert "`frame` must be finite" in capsys.readouterr().err
+    missing = str(tmp_path / "missing.npy")
+    assert main(["reconstruct", missing, "--sensor", "resistive16", "--out", out]) == 2
+    assert "`FRAME` must be an existing .npy file" in capsys.readouterr().err

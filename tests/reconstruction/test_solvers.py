@@ -1,0 +1,239 @@
+"""Solvers: exact recovery, dense/fast agreement, parameter rules, constraints, bad input."""
+
+import numpy as np
+import pytest
+
+from taxel.mechanics import make_indenter, solve_contact
+from taxel.reconstruction import (
+    ADMMSolver,
+    TikhonovSolver,
+    forward_model_preset,
+    forward_operator,
+    lcurve_curvature,
+    naive_inverse,
+    reconstruct,
+)
+
+SMALL = forward_model_preset("resistive16", shape=(10, 10))
+# vhdta128's ratio of depth to pitch (3.9) on a small grid: badly conditioned
+STEEP = forward_model_preset("vhdta128", shape=(24, 24))
+
+
+def _patch(shape, value=40e3):
+    truth = np.zeros(shape)
+    truth[3:6, 4:7] = value
+    return truth
+
+
+@pytest.mark.parametrize("order", [0, 1, 2])
+@pytest.mark.parametrize("representation", ["dense", "fast"])
+def test_exact_recovery_without_noise(order, representation):
+    solver = TikhonovSolver(SMALL, order=order, boundary="reflect", representation=representation)
+    truth = _patch(SMALL.shape)
+    frame = solver.operator.apply(truth)
+    result = solver.solve(frame, regularization=0.0)
+    assert np.allclose(result.pressure, truth, atol=1e-8 * 40e3)
+    # the residual is sqrt(|b|^2 - |fitted|^2): zero to sqrt(rounding)
+    assert result.residual_norm < 1e-6 * np.linalg.norm(frame) and result.method == "naive"
+
+
+def test_exact_recovery_on_the_zero_boundary_model():
+    solver = TikhonovSolver(SMALL, order=1)  # dense, exact model
+    assert solver.operator.boundary == "zero"
+    truth = _patch(SMALL.shape)
+    truth[0, 0] = 10e3  # in the corner: no boundary error in the exact model
+    result = solver.solve(solver.operator.apply(truth), regularization=0.0)
+    assert np.allclose(result.pressure, truth, atol=1e-8 * 40e3)
+
+
+@pytest.mark.parametrize("oversampling", [1, 2])
+@pytest.mark.parametrize("order", [0, 1, 2])
+@pytest.mark.parametrize("rule", [1e-2, "gcv", "lcurve", "discrepancy"])
+def test_dense_and_fast_solutions_agree(order, oversampling, rule):
+    spec = SMALL.with_changes(shape=(6, 7), oversampling=oversampling)
+    solvers = [
+        TikhonovSolver(spec, order=order, boundary="reflect", representation=r)
+        for r in ("dense", "fast")
+    ]
+    rng = np.random.default_rng(order)
+    frame = solvers[0].operator.apply(rng.random(spec.load_shape) * 1e4)
+    frame += rng.normal(0, 100, frame.shape)
+    dense, fast = (s.solve(frame, regularization=rule, noise_level=100.0) for s in solvers)
+    assert dense.regularization == pytest.approx(fast.regularization, rel=1e-6)
+    assert np.allclose(
+        dense.pressure, fast.pressure, rtol=0, atol=1e-8 * np.abs(dense.pressure).max()
+    )
+    assert dense.residual_norm == pytest.approx(fast.residual_norm, rel=1e-4, abs=1e-6)
+
+
+@pytest.mark.parametrize("order", [0, 1, 2])
+def test_solution_is_the_minimizer(order):
+    solver = TikhonovSolver(STEEP.with_changes(shape=(8, 8), oversampling=2), order=order)
+    rng = np.random.default_rng(4)
+    frame = rng.normal(0, 1e3, solver.spec.shape)
+    result = solver.solve(frame, regularization=0.05)
+    from taxel.reconstruction._model import dense_penalty
+
+    matrix = solver.operator.to_matrix()
+    x = result.pressure.ravel()
+    weight = 0.05**2 * solver.spectrum.scale
+    gradient = (
+        matrix.T @ (matrix @ x - frame.ravel())
+        + weight * dense_penalty(solver.spec.load_shape, order) @ x
+    )
+    assert np.abs(gradient).max() < 1e-9 * np.abs(matrix.T @ frame.ravel()).max()
+
+
+def test_lcurve_curvature_agrees_with_finite_differences():
+    rng = np.random.default_rng(0)
+    g = np.logspace(0, -12, 200)
+    beta2 = (np.sqrt(g) + rng.normal(0, 1e-4, g.size)) ** 2
+    lam = np.logspace(-6, 0, 3001)
+    f = g / (g + lam[:, None] ** 2)
+    rho = ((1 - f) ** 2 * beta2).sum(axis=1)
+    eta = (f**2 * beta2 / g).sum(axis=1)
+    deta = -(4 / lam) * ((1 - f) * f**2 * beta2 / g).sum(axis=1)
+    kappa = lcurve_curvature(lam, rho, eta, deta)
+    x, y = 0.5 * np.log(rho), 0.5 * np.log(eta)
+    dx, dy = np.gradient(x, lam), np.gradient(y, lam)
+    ddx, ddy = np.gradient(dx, lam), np.gradient(dy, lam)
+    numeric = (dx * ddy - ddx * dy) / (dx**2 + dy**2) ** 1.5
+    inner = slice(10, -10)
+    assert np.allclose(kappa[inner], numeric[inner], rtol=2e-3, atol=2e-3 * np.abs(kappa).max())
+    # and the derivative of eta is the analytic one
+    assert np.allclose(np.gradient(eta, lam)[inner], deta[inner], rtol=1e-3)
+
+
+def test_truncated_svd_keeps_whole_modes():
+    solver = TikhonovSolver(SMALL, truncated=True, representation="fast", boundary="reflect")
+    factors = solver.filter_factors(np.array([0.7]))
+    assert set(np.unique(factors)) <= {0.0, 1.0}
+    result = solver.solve(solver.operator.apply(_patch(SMALL.shape)), regularization="gcv")
+    assert result.method == "tsvd" and np.isfinite(result.pressure).all()
+
+
+def test_naive_inverse_blows_up_with_noise_and_regularization_does_not():
+    operator = forward_operator(STEEP)
+    truth = np.zeros(STEEP.shape)
+    truth[8:16, 9:14] = 100e3
+    clean = operator.apply(truth)
+    errors = {}
+    for noise in (1e-4, 1e-3):
+        frame = clean + np.random.default_rng(0).normal(0, noise * 413.7e3, clean.shape)
+        naive = naive_inverse(frame, STEEP).pressure
+        regularized = reconstruct(frame, STEEP, order=1).pressure
+        errors[noise] = [
+            np.linalg.norm(p - truth) / np.linalg.norm(truth) for p in (naive, regularized)
+        ]
+    assert errors[1e-3][0] > 10 * errors[1e-3][1]  # naive is useless at 0.1 % noise
+    assert errors[1e-3][0] == pytest.approx(10 * errors[1e-4][0], rel=0.05)  # linear in noise
+    assert errors[1e-3][1] < 0.5
+
+
+@pytest.mark.parametrize("method", ["nonneg", "tv"])
+@pytest.mark.parametrize("representation", ["dense", "fast"])
+def test_constrained_solutions_are_never_negative(method, representation):
+    solver = ADMMSolver(SMALL, method=method, boundary="reflect", representation=representation)
+    rng = np.random.default_rng(1)
+    frame = solver.operator.apply(_patch(SMALL.shape)) + rng.normal(0, 2e3, SMALL.shape)
+    for rule in ("gcv", "discrepancy"):
+        result = solver.solve(frame, regularization=rule, noise_level=2e3)
+        assert result.pressure.min() >= 0.0 and result.converged
+        assert result.method == method
+
+
+def test_tv_recovers_a_punch_better_than_tikhonov():
+    spec = forward_model_preset("resistive16")
+    truth = np.zeros(spec.shape)
+    truth[5:10, 4:9] = 50e3
+    frame = forward_operator(spec).apply(truth)
+    frame += np.random.default_rng(0).normal(0, 2e3, frame.shape)
+    tv = reconstruct(frame, spec, method="tv", regularization="discrepancy", noise_level=2e3)
+    tikhonov = reconstruct(frame, spec, order=1, regularization="discrepancy", noise_level=2e3)
+    error = [np.linalg.norm(r.pressure - truth) for r in (tv, tikhonov)]
+    assert error[0] < 0.7 * error[1]
+
+
+def test_super_resolution_improves_the_centroid_of_an_edge():
+    fine = forward_model_preset("resistive16", oversampling=2)
+    heights = make_indenter("edge", length=16e-3).on_grid(
+        fine.load_shape, fine.load_pitch, position=(0.3e-3, 0.7e-3), angle=0.4
+    )
+    truth = solve_contact(
+        heights, fine.load_pitch, fine.material, thickness=fine.thickness, normal_force=4.0
+    ).pressure
+    frame = forward_operator(fine).apply(truth)
+    frame += np.random.default_rng(2).normal(0, 0.01 * 200e3, frame.shape)
+
+    def centroid(pressure, pitch):
+        rows, cols = pressure.shape
+        x = (np.arange(cols) - (cols - 1) / 2) * pitch
+        y = (np.arange(rows) - (rows - 1) / 2) * pitch
+        window = pressure > 0.1 * pressure.max()
+        p = np.where(window, pressure, 0.0)
+        return np.array([(p.sum(0) * x).sum(), (p.sum(1) * y).sum()]) / p.sum()
+
+    expected = centroid(truth, fine.load_pitch)
+    errors = {}
+    for k in (1, 2):
+        result = reconstruct(frame, fine.with_changes(oversampling=k), order=1)
+        shift = centroid(result.pressure, fine.taxel_pitch / k) - expected
+        errors[k] = np.hypot(*shift) / fine.taxel_pitch
+    assert errors[2] < errors[1]
+
+
+def test_dead_taxels_are_excluded_not_read_as_zero():
+    truth = _patch(SMALL.shape)
+    spec = SMALL.with_changes(dead_taxels=[(4, 5), (0, 0)])
+    results = {}
+    for representation in ("dense", "fast"):  # exact elimination; imputation + PCG
+        operator = forward_operator(spec, boundary="reflect", representation=representation)
+        frame = operator.apply(truth)
+        frame[4, 5] = np.nan  # whatever a dead taxel reports is ignored
+        frame[0, 0] = 1e9
+        options = {"order": 1, "boundary": "reflect", "representation": representation}
+        results[representation] = reconstruct(frame, spec, regularization=1e-3, **options)
+        excluded = results[representation].pressure
+        assert np.abs(excluded - truth).max() < 0.1 * 40e3, representation
+        zeroed = np.nan_to_num(frame)  # what reading them as zero would give
+        zeroed[0, 0] = 0.0
+        wrong = reconstruct(zeroed, SMALL, regularization=1e-3, **options).pressure
+        assert np.abs(wrong - truth).max() > 5 * np.abs(excluded - truth).max()
+    assert np.allclose(results["dense"].pressure, results["fast"].pressure, atol=1e-6 * 40e3)
+    assert results["dense"].residual_norm == pytest.approx(results["fast"].residual_norm, rel=1e-4)
+
+
+def test_batches_are_solved_frame_by_frame():
+    solver = TikhonovSolver(SMALL, order=1)
+    rng = np.random.default_rng(3)
+    frames = solver.operator.apply(rng.random((2, 3, *SMALL.shape)) * 1e4)
+    frames += rng.normal(0, 300, frames.shape)
+    batch = solver.solve(frames)
+    assert batch.pressure.shape == (2, 3, *SMALL.shape)
+    assert batch.regularization.shape == (2, 3)
+    single = solver.solve(frames[1, 2])
+    assert single.regularization == pytest.approx(batch.regularization[1, 2])
+    assert np.allclose(single.pressure, batch.pressure[1, 2])
+
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda: reconstruct(np.zeros((4, 4)), "resistive16"), "`frame` must have shape"),
+        (lambda: reconstruct(np.full((16, 16), np.nan), "resistive16"), "`frame` must be finite"),
+        (
+            lambda: reconstruct(np.zeros((16, 16)), "resistive16", regularization=-1.0),
+            "`regularization` must be >= 0, got -1",
+        ),
+        (
+            lambda: reconstruct(np.zeros((16, 16)), "resistive16", regularization="oracle"),
+            "`regularization` must be a number >= 0 or one of",
+        ),
+        (lambda: reconstruct(np.zeros((16, 16)), "resistive16", method="magic"), "`method`"),
+        (lambda: reconstruct(np.zeros((16, 16)), "resistive16", order=3), "`order` must be"),
+        (lambda: reconstruct(np.zeros((16, 16)), "resistive16", tau=0), "`tau` must be > 0"),
+    ],
+)
+def test_bad_input_names_the_parameter(call, message):
+    with pytest.raises(ValueError, match=message):
+        call()
