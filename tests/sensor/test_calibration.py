@@ -110,7 +110,7 @@ def test_microbend_is_calibrated_per_fibre(sensors):
     assert np.abs(calibration.apply(frame.raw) - 4e4).max() < 0.01 * sensor.full_scale
 
 
-def test_apply_takes_a_stack_of_frames_and_clips_to_the_calibrated_range(sensors):
+def test_apply_takes_a_stack_of_frames_and_extends_or_clips_the_range(sensors):
     sensor = sensors["capacitive4x4"]
     calibration = calibrate(sensor, n_levels=11)
     frames = np.stack(
@@ -122,7 +122,9 @@ def test_apply_takes_a_stack_of_frames_and_clips_to_the_calibrated_range(sensors
     pressure = calibration.apply(frames)
     assert pressure.shape == (3, 4, 4)
     assert np.allclose(pressure[:, 0, 0], [0.0, 1e4, 2.5e4], atol=10.0)
-    assert np.all(calibration.apply(np.zeros((4, 4))) == 0.0)  # below rest: no load
+    below = calibration.apply(np.zeros((4, 4)))  # below rest: the slope there continues
+    assert np.all((below < -2e3) & (below > -3e3))  # 2978 codes below rest, ~1 Pa each
+    assert np.all(calibration.apply(np.zeros((4, 4)), clip=True) == 0.0)
     assert np.all(calibration.apply(np.full((4, 4), 65535)) == sensor.full_scale)
     with pytest.raises(ValueError, match="`raw` must end in the calibrated shape"):
         calibration.apply(np.zeros((3, 3)))
@@ -227,3 +229,17 @@ def test_felt_pressure_is_the_stress_at_depth_under_any_load(sensors):
     assert error.max() < 1e-3 * sensor.full_scale
     plate_equivalent = calibration.apply(frame.raw)
     assert plate_equivalent[0, 0] == pytest.approx(felt[0, 0] / 0.81, rel=0.02)
+
+
+def test_noise_about_no_load_stays_zero_mean(sensors):
+    sensor = sensors["resistive16"]
+    calibration = calibrate(sensor, rng=0)
+    rest = sensor.frame_from_pressure(np.zeros(sensor.load_grid.shape)).quantity
+    frames = np.stack([sensor.read(rest, rng=seed) for seed in range(40)])
+    pressure = calibration.apply(frames)
+    # 40 x 256 readings with 0.5 kPa of noise: the mean is within 3 standard errors of 0
+    noise = pressure.std()
+    assert 0.3e3 < noise < 1e3
+    assert abs(pressure.mean()) < 3 * noise / np.sqrt(pressure.size) + 20.0
+    clipped = calibration.apply(frames, clip=True)
+    assert clipped.mean() > 0.3 * noise  # clipping at 0 biases an unloaded sensor

@@ -95,19 +95,24 @@ class Calibration:
         flat = self.direction * self.readings.reshape(len(self.pressures), -1)
         return PchipInterpolator(self.pressures, flat, axis=0)
 
-    def apply(self, raw: Any) -> np.ndarray:
+    def apply(self, raw: Any, *, clip: bool = False) -> np.ndarray:
         """Calibrated frame: equivalent plate pressure of every taxel [Pa].
 
         Parameters
         ----------
         raw : array_like, shape (..., *shape)
             One or more raw frames of the sensor.
+        clip : bool, default False
+            Clip the result to [0, full_scale]. By default a reading on the far side of
+            the no-load reading continues the response's slope there, so noise about no
+            load stays zero-mean (clipping it at 0 would add a positive bias to every
+            unloaded taxel, and to any total force).
 
         Returns
         -------
         numpy.ndarray, shape (..., *shape)
-            Pressure [Pa], in [0, full_scale]: readings beyond the calibrated ones are
-            clipped to its ends, and a reading that several pressures share (a flat part
+            Pressure [Pa]. A reading beyond the full-scale one returns full scale (the
+            information is lost there); a reading that several pressures share (a flat part
             of the response) returns the middle of them. NaN where `valid` is False.
         """
         raw = as_finite_array("raw", raw)
@@ -117,12 +122,25 @@ class Calibration:
         lead = raw.shape[: raw.ndim - len(shape)]
         taxels = int(np.prod(shape))
         knots = self.direction * self.readings.reshape(len(self.pressures), taxels)
-        x = np.clip(self.direction * raw.reshape(-1, taxels), knots[0], knots[-1])
+        oriented = self.direction * raw.reshape(-1, taxels)
+        x = np.clip(oriented, knots[0], knots[-1])
         pressure = invert_pchip(self._response, self.pressures, knots, x)
+        if not clip:
+            below = oriented < knots[0]
+            pressure = np.where(below, (oriented - knots[0]) * self._rest_slope, pressure)
         pressure = np.where(self.valid.reshape(taxels), pressure, np.nan)
         return pressure.reshape(*lead, *shape)
 
-    def felt_pressure(self, raw: Any) -> np.ndarray:
+    @cached_property
+    def _rest_slope(self) -> np.ndarray:
+        """Pressure per unit reading at no load, per taxel [Pa per raw unit]; 0 if flat."""
+        knots = self.direction * self.readings.reshape(len(self.pressures), -1)
+        slope = self._response.c[2, 0]  # dr/dp of the first segment at p = 0
+        secant = (knots[1] - knots[0]) / (self.pressures[1] - self.pressures[0])
+        slope = np.where(slope > 0, slope, secant)
+        return np.divide(1.0, slope, out=np.zeros_like(slope), where=slope > 0)
+
+    def felt_pressure(self, raw: Any, *, clip: bool = False) -> np.ndarray:
         """Pressure each taxel feels: the normal stress at its depth [Pa], NaN if excluded.
 
         `apply` times `felt_fraction`. For cells that sense the stress at their depth
@@ -132,7 +150,7 @@ class Calibration:
         For microbend fibres it is the mean along each fibre.
         """
         fraction = 1.0 if self.felt_fraction is None else self.felt_fraction
-        return self.apply(raw) * fraction
+        return self.apply(raw, clip=clip) * fraction
 
     # ----------------------------------------------------------------------- files
     def save(self, path: str | os.PathLike[str], *, overwrite: bool = False) -> Path:
