@@ -89,7 +89,7 @@ def test_a_given_lambda_and_oversampling(frame_file, tmp_path, capsys):
     "extra, message",
     [
         (["--sensor", "vhdta128"], "`frame` must have shape (128, 128)"),
-        (["--sensor", "gelsight"], "`--sensor` must be one of vhdta128, resistive16"),
+        (["--sensor", "gelsight"], "`--sensor` must be one of vhdta128, harmon10x20, resistive16"),
         (["--sensor", "resistive16", "--lambda", "-2"], "`regularization` must be >= 0"),
         (["--sensor", "resistive16", "--lambda", "oracle"], "`regularization` must be a number"),
     ],

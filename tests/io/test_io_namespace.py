@@ -6,8 +6,10 @@ import taxel.io
 def test_public_names():
     assert sorted(taxel.io.__all__) == [
         "CPM_FINGER",
+        "CPM_FINGER_ASSUMED",
         "FabricSlideRecording",
         "TactileSequence",
+        "cpm_finger_sensor",
         "list_fabricslide_files",
         "parse_fabricslide_name",
         "read_fabricslide",

@@ -3,8 +3,10 @@
 import numpy as np
 import pytest
 
-from taxel.mechanics import hertz_sphere, make_indenter
-from taxel.sensor import PRESET_NAMES, Readout, make_sensor
+from taxel.mechanics import ElasticMaterial, hertz_sphere, make_indenter
+from taxel.sensor import PRESET_NAMES, ArrayGeometry, Cover, Readout, make_sensor
+
+SILICONE = ElasticMaterial(1e6, 0.49)
 
 
 @pytest.fixture(scope="module")
@@ -99,3 +101,53 @@ def test_bad_sensor_specifications():
     sensor = make_sensor("resistive16")
     with pytest.raises(ValueError, match="`frame_rate` must be > 0"):
         type(sensor)(**{**sensor.__dict__, "frame_rate": 0.0})
+
+
+def test_capacitive_cells_with_their_own_modulus_feel_the_stress(presets):
+    # a dielectric of constrained modulus M is strained by sigma_z / M at the cell's depth
+    sensor = presets["capacitive4x4"]
+    frame = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, 2e4))
+    assert np.allclose(frame.quantity, frame.fields.stress / 1.0e6)
+    assert frame.quantity.max() < -0.01  # compressed by more than 1 % everywhere
+    rest = sensor.frame_from_pressure(np.zeros(sensor.load_grid.shape))
+    assert np.all(frame.raw > rest.raw + 1000)  # 16-bit codes move with the load
+
+
+@pytest.mark.parametrize("name", ["harmon10x20", "resistive16"])
+def test_no_working_taxel_clips_below_full_scale(presets, name):
+    # the ADC range covers the unit's gains, offsets and crosstalk (81 of resistive16's 256
+    # taxels read the top code at full scale when it covered only the ideal signal)
+    sensor = presets[name]
+    top = 2**sensor.readout.bits - 1
+    full = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, sensor.full_scale))
+    rest = sensor.frame_from_pressure(np.zeros(sensor.load_grid.shape))
+    assert full.raw.max() < top and rest.raw.min() > 0
+    bottom, high = sensor.readout_chain.rails
+    assert bottom <= sensor.signal_range[0] and high > sensor.signal_range[1]
+    assert sensor.readout_chain.lsb == pytest.approx((high - bottom) / 4096)
+
+
+@pytest.mark.parametrize(
+    ("build", "error", "match"),
+    [
+        (lambda: ArrayGeometry(4, 4, 0.0), ValueError, "`pitch` must be > 0, got 0"),
+        (lambda: ArrayGeometry(4, 4, (1e-3, -1e-3), "rectangular"), ValueError, "`pitch`"),
+        (lambda: Readout(bits=25), ValueError, "`bits` must lie in \\[1, 24\\], got 25"),
+        (lambda: Readout(bits=0), ValueError, "`bits` must lie in \\[1, 24\\], got 0"),
+        (lambda: Readout(bits=8.5), TypeError, "`bits` must be an integer or None"),
+        (lambda: Cover(SILICONE, depth=0.0), ValueError, "`depth` must be > 0, got 0"),
+        (lambda: Cover(SILICONE, depth=-1e-3), ValueError, "`depth` must be > 0, got -0.001"),
+        (lambda: make_sensor("vhdta256"), ValueError, "`name` must be one of vhdta128"),
+        (lambda: make_indenter("cup"), ValueError, "`name` must be one of pen, sphere"),
+    ],
+)
+def test_bad_specifications_name_the_parameter_and_value(build, error, match):
+    with pytest.raises(error, match=match):
+        build()
+
+
+def test_harmon_array_output_stays_within_its_supply(presets):
+    sensor = presets["harmon10x20"]
+    low, high = sensor.signal_range  # the ideal output from rest to full scale, +-5 %
+    assert high < sensor.transducer.supply_voltage
+    assert sensor.transducer.respond(sensor.full_scale) == pytest.approx(4.5)

@@ -129,3 +129,11 @@ def test_protocol_and_errors():
         glass_scratches((4, 4), rng=0.5)
     with pytest.raises(ValueError, match="`contact_fraction` must lie in"):
         pressure_from_contact_fraction(1.5, contact_modulus=1e6, rms_slope=0.2)
+
+
+def test_the_scratch_pattern_is_drawn_once_per_glass_and_shape():
+    sensor = FtirTransducer(scratch_count=4, scratch_seed=7)
+    first = sensor.scratches((32, 32))
+    assert sensor.scratches((32, 32)) is first  # cached: a frame does not redraw the glass
+    assert not first.flags.writeable
+    assert np.array_equal(first, glass_scratches((32, 32), rng=7, count=4))

@@ -14,7 +14,7 @@ __all__ = ["CommandLineError", "main"]
 EXIT_USAGE = 2
 
 # each subcommand module (taxel/cli/_NAME.py) exposes register(commands)
-_SUBCOMMANDS = ("_demo", "_features", "_reconstruct", "_texture")
+_SUBCOMMANDS = ("_demo", "_design", "_features", "_reconstruct", "_simulate", "_texture")
 
 
 class CommandLineError(Exception):

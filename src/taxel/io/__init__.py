@@ -11,9 +11,10 @@ read_frame, read_sequence, TactileSequence
 FabricSlide recordings (capacitive finger sliding over fabrics)
 ---------------------------------------------------------------
 read_fabricslide, FabricSlideRecording, parse_fabricslide_name, list_fabricslide_files,
-CPM_FINGER
+CPM_FINGER, cpm_finger_sensor (the CPM-Finger as a sensor model), CPM_FINGER_ASSUMED
 """
 
+from taxel.io._cpm_finger import CPM_FINGER_ASSUMED, cpm_finger_sensor
 from taxel.io._fabricslide import (
     CPM_FINGER,
     FabricSlideRecording,
@@ -25,8 +26,10 @@ from taxel.io._frames import TactileSequence, read_frame, read_sequence
 
 __all__ = [
     "CPM_FINGER",
+    "CPM_FINGER_ASSUMED",
     "FabricSlideRecording",
     "TactileSequence",
+    "cpm_finger_sensor",
     "list_fabricslide_files",
     "parse_fabricslide_name",
     "read_fabricslide",

@@ -50,7 +50,6 @@ class TaxelFields:
         return getattr(self, name)
 
 
-@lru_cache(maxsize=16)
 def depth_operators(
     shape: tuple[int, int],
     spacing: tuple[float, float],
@@ -60,9 +59,23 @@ def depth_operators(
 ) -> tuple[ConvolutionOperator, ConvolutionOperator]:
     """Stress and strain operators to the sensing depth on a load grid (built once, cached)."""
     return (
-        depth_stress_operator(shape, spacing, depth, material, thickness=thickness),
-        depth_strain_operator(shape, spacing, depth, material, thickness=thickness),
+        _depth_operator("stress", shape, spacing, depth, material, thickness),
+        _depth_operator("strain", shape, spacing, depth, material, thickness),
     )
+
+
+@lru_cache(maxsize=32)
+def _depth_operator(
+    name: str,
+    shape: tuple[int, int],
+    spacing: tuple[float, float],
+    depth: float,
+    material: ElasticMaterial,
+    thickness: float | None,
+) -> ConvolutionOperator:
+    # one at a time: a sensor needs one of the two, and each costs a kernel table to build
+    build = depth_stress_operator if name == "stress" else depth_strain_operator
+    return build(shape, spacing, depth, material, thickness=thickness)
 
 
 @lru_cache(maxsize=16)
@@ -108,9 +121,13 @@ def taxel_fields(
             f"`pressure` must be on the sensor's load grid {grid.shape}, got {pressure.shape}"
         )
     zeros = np.zeros(grid.geometry.shape)
-    stress_operator, strain_operator = depth_operators(
-        grid.shape, grid.spacing, cover.depth, cover.material, cover.thickness
-    )
+    key = (grid.shape, grid.spacing, cover.depth, cover.material, cover.thickness)
+
+    def at_depth(name: str) -> np.ndarray:
+        if name not in need:
+            return zeros
+        return grid.taxel_means(_depth_operator(name, *key).apply(pressure))
+
     if "displacement" in need and displacement is None:
         operator = _displacement_operator(
             grid.shape, grid.spacing, cover.material, cover.thickness
@@ -118,7 +135,7 @@ def taxel_fields(
         displacement = operator.apply(pressure)
     return TaxelFields(
         pressure=grid.taxel_means(pressure) if "pressure" in need else zeros,
-        stress=grid.taxel_means(stress_operator.apply(pressure)) if "stress" in need else zeros,
-        strain=grid.taxel_means(strain_operator.apply(pressure)) if "strain" in need else zeros,
+        stress=at_depth("stress"),
+        strain=at_depth("strain"),
         displacement=grid.taxel_means(displacement) if "displacement" in need else zeros,
     )

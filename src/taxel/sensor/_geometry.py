@@ -184,6 +184,8 @@ class LoadGrid:
         """Mean of a load-grid field over each taxel's block; shape (..., rows, cols)."""
         block_rows, block_cols = self._block
         rows, cols = self.geometry.shape
+        if (block_rows, block_cols) == (1, 1):  # one cell per taxel: nothing to average
+            return np.asarray(field, dtype=float)
         if self.geometry.layout != "hexagonal":
             blocks = field.reshape(*field.shape[:-2], rows, block_rows, cols, block_cols)
             return blocks.mean(axis=(-3, -1))

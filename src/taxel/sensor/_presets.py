@@ -47,12 +47,14 @@ def _vhdta128() -> TactileSensor:
 
 
 def _harmon10x20() -> TactileSensor:
-    # Harmon (1980): 1-2 mm resolution, 10 x 20 points, 1000:1, 100 Hz - 1 kHz, monotonic
+    # Harmon (1980): 1-2 mm resolution, 10 x 20 points, 1000:1, 100 Hz - 1 kHz, monotonic.
+    # p_ref = 250 kPa keeps the 5 V transimpedance stage at 4.5 V at full scale (with
+    # 50 kPa it was asked for 20.5 V, four times its supply)
     return TactileSensor(
         name="harmon10x20",
         geometry=ArrayGeometry(10, 20, 1.5e-3),
         cover=Cover(SILICONE, depth=1.0e-3, thickness=1.0e-3),
-        transducer=ResistiveTransducer(reference_pressure=5e4, exponent=1.0),
+        transducer=ResistiveTransducer(reference_pressure=2.5e5, exponent=1.0),
         readout=Readout(bits=12, noise=3e-4, gain_spread=0.03, hysteresis=0.01, unit_seed=2),
         frame_rate=1000.0,
         full_scale=2.0e6,

@@ -150,12 +150,20 @@ class UnitPattern:
 
 @dataclass(frozen=True)
 class ReadoutChain:
-    """A readout bound to one unit: its signal range and fixed pattern (built by the sensor)."""
+    """A readout bound to one unit: its signal range and fixed pattern (built by the sensor).
+
+    `low` and `high` bound the transducer's ideal signal over the working range; noise,
+    offsets and drift are scaled by their difference. `adc_range` is the input range of the
+    ADC (and the rails faulty taxels read); None uses (low, high). A unit whose gains,
+    offsets and crosstalk push some taxels past `high` needs a wider ADC range, or those
+    taxels clip before full scale (see `covering`).
+    """
 
     readout: Readout
     low: float
     high: float
     shape: tuple[int, ...]
+    adc_range: tuple[float, float] | None = None
 
     @cached_property
     def pattern(self) -> UnitPattern:
@@ -167,11 +175,22 @@ class ReadoutChain:
         """Width of the signal range [signal unit]."""
         return self.high - self.low
 
-    def apply(self, signal: Any, *, rng: Any = None, temperature: float | None = None) -> Any:
-        """The static chain on a signal of shape (..., *shape); noise only with `rng`."""
+    @property
+    def rails(self) -> tuple[float, float]:
+        """(bottom, top) of the ADC input range [signal unit]: what dead and saturated read."""
+        return (self.low, self.high) if self.adc_range is None else self.adc_range
+
+    @property
+    def lsb(self) -> float | None:
+        """One ADC step [signal unit]; None without an ADC."""
+        if self.readout.bits is None:
+            return None
+        bottom, top = self.rails
+        return (top - bottom) / 2**self.readout.bits
+
+    def analog(self, signal: Any, *, temperature: float | None = None) -> np.ndarray:
+        """The noise-free signal at the ADC input: temperature, gain/offset, crosstalk."""
         readout = self.readout
-        if readout.is_identity:
-            return np.asarray(signal)
         y = np.asarray(signal, dtype=float)
         if temperature is not None and readout.temperature_coefficient:
             y = temperature_dependence(
@@ -180,6 +199,40 @@ class ReadoutChain:
         y = self.pattern.gain_offset.apply(y)
         if readout.crosstalk and len(self.shape) == 2:
             y = neighbour_crosstalk(y, coupling=readout.crosstalk)
+        return y
+
+    def covering(self, signals: Any, *, margin: float = 0.05) -> ReadoutChain:
+        """The same chain with an ADC range wide enough for these signals on this unit.
+
+        Parameters
+        ----------
+        signals : array_like, shape (n, *shape)
+            Ideal signals the ADC must take without clipping (the unloaded sensor and the
+            full-scale load).
+        margin : float, default 0.05
+            Extra room on each side, as a fraction of `span`.
+
+        Returns
+        -------
+        ReadoutChain
+            Itself when the signals, after this unit's gain, offset and crosstalk, stay
+            within (low, high); otherwise with `adc_range` stretched past each side they
+            cross to the extreme value plus the margin.
+        """
+        values = self.analog(signals)
+        smallest, largest = float(values.min()), float(values.max())
+        bottom = self.low if smallest >= self.low else smallest - margin * self.span
+        top = self.high if largest <= self.high else largest + margin * self.span
+        if (bottom, top) == (self.low, self.high):
+            return self
+        return ReadoutChain(self.readout, self.low, self.high, self.shape, (bottom, top))
+
+    def apply(self, signal: Any, *, rng: Any = None, temperature: float | None = None) -> Any:
+        """The static chain on a signal of shape (..., *shape); noise only with `rng`."""
+        readout = self.readout
+        if readout.is_identity:
+            return np.asarray(signal)
+        y = self.analog(signal, temperature=temperature)
         if rng is not None and (readout.noise or readout.multiplicative_noise):
             y = add_noise(
                 y,
@@ -187,7 +240,9 @@ class ReadoutChain:
                 multiplicative=readout.multiplicative_noise,
                 rng=rng,
             )
-        y = self.pattern.faults.apply(y, low=self.low, high=self.high)
+        bottom, top = self.rails
+        if readout.dead or readout.stuck or readout.saturated:
+            y = self.pattern.faults.apply(y, low=bottom, high=top)
         if readout.bits is None:
             return y
-        return adc_codes(y, bits=readout.bits, low=self.low, high=self.high)
+        return adc_codes(y, bits=readout.bits, low=bottom, high=top)

@@ -20,7 +20,7 @@ from taxel.sensor._cover import Cover
 from taxel.sensor._fields import TaxelFields, taxel_fields
 from taxel.sensor._geometry import ArrayGeometry, LoadGrid
 from taxel.sensor._readout import Readout, ReadoutChain
-from taxel.transducers import Transducer, add_drift, creep, play_hysteresis
+from taxel.transducers import FtirTransducer, Transducer, add_drift, creep, play_hysteresis
 
 __all__ = ["SensorFrame", "TactileSensor"]
 
@@ -194,6 +194,8 @@ class TactileSensor:
         """Mechanical fields at each taxel for a surface pressure on the load grid [Pa]."""
         pressure = as_finite_array("pressure", pressure, ndim=2)
         need = (_FIELD_OF_QUANTITY[self.quantity], "pressure")
+        if self.quantity == "strain" and self.cell_modulus is not None:
+            need = ("stress", "pressure")  # the cell's strain follows the stress at its depth
         return taxel_fields(
             pressure, self.load_grid, self.cover, displacement=displacement, need=need
         )
@@ -243,10 +245,18 @@ class TactileSensor:
 
     @cached_property
     def readout_chain(self) -> ReadoutChain:
-        """The electronics of this unit, bound to its signal range and fixed pattern."""
+        """The electronics of this unit, bound to its signal range and fixed pattern.
+
+        The ADC range covers this unit's taxels from rest to a full-scale flat plate after
+        their gain, offset and crosstalk, so that no working taxel clips below full scale.
+        """
         low, high = self.signal_range
-        signal_shape = np.shape(self.respond(np.zeros(self.shape)))
-        return ReadoutChain(self.readout, low, high, signal_shape)
+        rest = self._ideal_signal(np.zeros(self.load_grid.shape))
+        loaded = self._ideal_signal(np.full(self.load_grid.shape, self.full_scale))
+        chain = ReadoutChain(self.readout, low, high, np.shape(rest))
+        if self.readout.is_identity or self.is_dynamic:
+            return chain
+        return chain.covering(np.stack([rest, loaded]))
 
     @cached_property
     def signal_range(self) -> tuple[float, float]:
@@ -287,10 +297,52 @@ class TactileSensor:
         pressure = as_finite_array("pressure", pressure, ndim=2)
         fields = self.fields(pressure, displacement=displacement)
         quantity = self.sensed_quantity(pressure, fields)
+        signal, raw = self._read(quantity, rng, temperature)
+        return SensorFrame(raw, signal, quantity, fields, contact)
+
+    def _read(
+        self, quantity: np.ndarray, rng: Any, temperature: float | None
+    ) -> tuple[np.ndarray, np.ndarray]:
         generator = None if rng is None else np.random.default_rng(rng)
         signal = self.respond(quantity, rng=generator)
         raw = self.readout_chain.apply(signal, rng=generator, temperature=temperature)
-        return SensorFrame(raw, np.asarray(signal, float), quantity, fields, contact)
+        return np.asarray(signal, dtype=float), np.asarray(raw)
+
+    def read(self, quantity: Any, *, rng: Any = None, temperature: float | None = None) -> Any:
+        """Raw frame for a frame of the sensed quantity (transducer, then readout).
+
+        The mechanics are left out, so repeated frames of one load (a calibration's
+        repeats) cost only the electronics. `rng` switches the noise on.
+        """
+        quantity = as_finite_array("quantity", quantity)
+        return self._read(quantity, rng, temperature)[1]
+
+    def mean_reading(self, quantity: Any) -> np.ndarray:
+        """The expected raw frame for a frame of the sensed quantity, without quantisation.
+
+        What the mean of many noisy frames tends to when the noise spans a few ADC steps:
+        the analog signal at the ADC input in code units (minus half a step, the mean
+        offset of a flooring converter), or the camera's mean level [DN] before rounding.
+        Used to measure responses finer than one step (sensitivity, monotonicity).
+        """
+        quantity = as_finite_array("quantity", quantity)
+        transducer = self.transducer
+        if isinstance(transducer, FtirTransducer):  # the camera quantises; undo its rounding
+            fraction = transducer.light_fraction(quantity)
+            if transducer.scratch_count:
+                fraction = fraction + transducer.scratches(quantity.shape[-2:])
+            span = transducer.bright_level - transducer.dark_level
+            signal = transducer.dark_level + span * fraction
+        else:
+            signal = np.asarray(self.respond(quantity), dtype=float)
+        chain = self.readout_chain
+        if self.readout.is_identity:
+            return signal
+        analog = chain.analog(signal)
+        lsb = chain.lsb
+        if lsb is None:
+            return analog
+        return (analog - chain.rails[0]) / lsb - 0.5
 
     def read_sequence(self, quantities: Any, *, rng: Any = None) -> np.ndarray:
         """Raw frames for a time series of the sensed quantity, shape (frames, ...).

@@ -1,0 +1,227 @@
+"""``taxel simulate``: one raw frame of a preset sensor pressed by a named object.
+
+``taxel simulate --sensor PRESET --object NAME --force NEWTONS --out FRAME.npy`` solves the
+contact, runs the transducer and readout, and saves the raw frame; ``--truth TRUTH.npz``
+also saves what produced it (pressure on the load grid, contact, taxel fields). Positions
+are given in metres in the sensor frame; files are never replaced unless ``--overwrite``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from taxel.cli._main import CommandLineError
+
+__all__ = ["register"]
+
+
+def _check_new(path: Path, suffix: str, flag: str, overwrite: bool) -> Path:
+    if path.suffix.lower() != suffix:
+        raise CommandLineError(f"{flag} must name a {suffix} file, got {str(path)!r}")
+    if path.exists() and not overwrite:
+        raise FileExistsError(f"{path} exists; pass --overwrite to replace it")
+    return path
+
+
+def _default_position(indenter: Any) -> tuple[float, float]:
+    # a can's origin is the centre of its rim: put the centre one rim radius off the
+    # sensor so the arc passes through the middle of the array
+    radius = getattr(indenter, "rim_radius", None)
+    return (-float(radius), 0.0) if radius is not None else (0.0, 0.0)
+
+
+def _truth(frame: Any, sensor: Any, meta: dict[str, Any]) -> dict[str, Any]:
+    from taxel.sensor import taxel_fields
+
+    contact = frame.contact
+    fields = taxel_fields(
+        contact.pressure, sensor.load_grid, sensor.cover, displacement=contact.displacement
+    )
+    taxel_x, taxel_y = sensor.geometry.positions()
+    return {
+        "meta": np.array(json.dumps(meta)),
+        "pressure": contact.pressure,
+        "contact": contact.contact,
+        "displacement": contact.displacement,
+        "spacing": np.asarray(contact.spacing),
+        "taxel_x": taxel_x,
+        "taxel_y": taxel_y,
+        "taxel_pressure": fields.pressure,
+        "taxel_stress": fields.stress,
+        "taxel_strain": fields.strain,
+        "taxel_displacement": fields.displacement,
+        "quantity": frame.quantity,
+        "signal": frame.signal,
+    }
+
+
+def _run(arguments: argparse.Namespace) -> int:
+    from taxel.mechanics import make_indenter
+    from taxel.sensor import make_sensor
+
+    out = _check_new(Path(arguments.out), ".npy", "--out", arguments.overwrite)
+    truth = None
+    if arguments.truth is not None:
+        truth = _check_new(Path(arguments.truth), ".npz", "--truth", arguments.overwrite)
+        if truth.resolve() == out.resolve():
+            raise CommandLineError("--truth must differ from --out")
+    sensor = make_sensor(arguments.sensor)
+    if arguments.oversampling is not None:
+        sensor = dataclasses.replace(sensor, oversampling=arguments.oversampling)
+    indenter = make_indenter(arguments.object)
+    default_x, default_y = _default_position(indenter)
+    x = default_x if arguments.x is None else arguments.x
+    y = default_y if arguments.y is None else arguments.y
+    cell_x, cell_y = sensor.load_grid.coordinates()
+    heights = indenter.heights(cell_x, cell_y, position=(x, y), angle=arguments.angle)
+    if not np.any(np.isfinite(heights)):
+        width, height = (size * 1e3 for size in sensor.geometry.extent)
+        cell = sensor.load_grid.spacing[1] * 1e3
+        raise CommandLineError(
+            f"the {arguments.object} at x = {x:g} m, y = {y:g} m is over no cell of the "
+            f"{width:g} x {height:g} mm load grid ({cell:g} mm cells): move it onto the "
+            "sensor, or refine the grid with --oversampling"
+        )
+    frame = sensor.press(
+        indenter,
+        normal_force=arguments.force,
+        position=(x, y),
+        angle=arguments.angle,
+        rng=arguments.seed,
+    )
+    contact = frame.contact
+    if contact is None:  # press always solves a contact; this keeps the types honest
+        raise CommandLineError("the press returned no contact")
+    raw = np.asarray(frame.raw)
+    meta = {
+        "sensor": sensor.name,
+        "object": arguments.object,
+        "normal_force": arguments.force,
+        "position": [x, y],
+        "angle": arguments.angle,
+        "seed": arguments.seed,
+        "oversampling": sensor.oversampling,
+        "converged": contact.converged,
+        "n_iterations": contact.n_iterations,
+        "residual": contact.residual,
+        "contact_area": contact.contact_area,
+        "raw_file": str(out),
+    }
+    with open(out, "wb") as stream:
+        np.save(stream, raw, allow_pickle=False)
+    if truth is not None:
+        with open(truth, "wb") as stream:
+            np.savez_compressed(stream, **_truth(frame, sensor, meta))
+    noise = "noise-free" if arguments.seed is None else f"noise seed {arguments.seed}"
+    sys.stdout.write(
+        f"wrote {out}: {sensor.name} raw frame {' x '.join(map(str, raw.shape))} "
+        f"({raw.dtype}, {noise}), {arguments.object} {arguments.force:g} N at "
+        f"({x * 1e3:g}, {y * 1e3:g}) mm; contact {contact.contact_area * 1e6:.3g} mm^2, "
+        f"{'converged' if contact.converged else 'NOT converged'} in "
+        f"{contact.n_iterations} iterations"
+        + (f"; truth in {truth}" if truth is not None else "")
+        + "\n"
+    )
+    return 0
+
+
+def _positive(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"must be > 0, got {text}")
+    return value
+
+
+def _finite(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be finite, got {text}")
+    return value
+
+
+def _count(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
+    if not 1 <= value <= 16:
+        raise argparse.ArgumentTypeError(f"must lie in 1..16, got {text}")
+    return value
+
+
+def _seed(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be >= 0, got {text}")
+    return value
+
+
+def register(commands: Any) -> None:
+    """Add the ``simulate`` subcommand to the ``taxel`` parser's subcommands.
+
+    Parameters
+    ----------
+    commands : argparse._SubParsersAction
+        The subcommand registry of the ``taxel`` parser.
+    """
+    from taxel.mechanics import INDENTER_NAMES
+    from taxel.sensor import PRESET_NAMES
+
+    parser = commands.add_parser(
+        "simulate",
+        help="one raw frame of a preset sensor pressed by an object",
+        description="Press a named object on a preset sensor with a given force and save "
+        "the raw frame (.npy); optionally save the ground truth (.npz). "
+        f"Sensors: {', '.join(PRESET_NAMES)}. Objects: {', '.join(INDENTER_NAMES)}.",
+    )
+    parser.add_argument("--sensor", required=True, metavar="PRESET", help="sensor preset")
+    parser.add_argument("--object", required=True, metavar="NAME", help="indenter name")
+    parser.add_argument(
+        "--force", required=True, type=_positive, metavar="NEWTONS", help="normal force [N]"
+    )
+    parser.add_argument(
+        "--x",
+        type=_finite,
+        metavar="M",
+        help="x of the object's origin in the sensor frame [m] (0; the can: minus its "
+        "rim radius, so the rim crosses the middle)",
+    )
+    parser.add_argument("--y", type=_finite, metavar="M", help="y of the object's origin [m] (0)")
+    parser.add_argument(
+        "--angle", type=_finite, default=0.0, metavar="RAD", help="rotation about z [rad] (0)"
+    )
+    parser.add_argument(
+        "--seed", type=_seed, metavar="N", help="switch the sensor's noise on, reproducibly"
+    )
+    parser.add_argument(
+        "--oversampling",
+        type=_count,
+        metavar="K",
+        help="solve the contact on K x K cells per taxel (the preset's, usually 1); "
+        "finer grids resolve small objects such as the can's 1 mm lip",
+    )
+    parser.add_argument("--out", required=True, metavar="FRAME.npy", help="raw frame to write")
+    parser.add_argument(
+        "--truth",
+        metavar="TRUTH.npz",
+        help="also write pressure, contact and taxel fields (SI units) to this file",
+    )
+    parser.add_argument("--overwrite", action="store_true", help="replace output files that exist")
+    parser.set_defaults(handler=_run)

@@ -1,0 +1,411 @@
+"""Per-taxel calibration from flat-plate presses, with dead and stuck taxels masked.
+
+A calibration rig presses a flat plate on the whole array at a set of known pressures,
+several times each, and records the raw frames. For every taxel the mean reading at each
+pressure is made monotonic (isotonic regression: noise can make neighbouring means cross)
+and a monotone cubic (PCHIP) through those points is the taxel's response; its inverse is
+the calibration. A taxel whose reading hardly changes with load, or that reads a rail of
+the ADC at every pressure, is excluded: its calibrated value is NaN and `valid` is False.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from dataclasses import dataclass, field
+from functools import cached_property
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy.interpolate import PchipInterpolator
+
+from taxel._validation import as_finite_array, check_positive, check_range
+from taxel.sensor._fields import taxel_fields
+from taxel.sensor._monotone import invert_pchip, isotonic_increasing
+from taxel.sensor._sensor import TactileSensor
+
+__all__ = ["Calibration", "calibrate"]
+
+_FORMAT = "taxel.calibration/1"
+
+
+@dataclass(frozen=True, eq=False)
+class Calibration:
+    """A per-taxel map from raw reading to equivalent plate pressure [Pa].
+
+    The calibrated value of a taxel (`apply`) is the pressure of a flat plate over the
+    whole array that gives its reading: the pressure on the cover above it when the load
+    is uniform, and for any load the sensed quantity expressed in that unit. `felt_pressure`
+    turns it into the pressure the taxel feels, the normal stress at its depth, which a
+    plate over the array delivers in full to inner taxels and only in part to the edge
+    ones. Build it with `calibrate`.
+
+    Attributes
+    ----------
+    sensor_name : str
+        The sensor it belongs to.
+    pressures : numpy.ndarray, shape (n_levels,)
+        Plate pressures of the calibration, increasing, from 0 [Pa].
+    readings : numpy.ndarray, shape (n_levels, *shape)
+        Monotonic fit of the mean raw reading of every taxel at each pressure [raw unit].
+    valid : numpy.ndarray of bool, shape `shape`
+        Taxels that respond to load; the others are NaN in every calibrated frame.
+    unresponsive : numpy.ndarray of bool
+        Taxels whose reading changes by less than `min_response` of the median change
+        from no load to full scale (dead, stuck, or wired the wrong way).
+    pinned : numpy.ndarray of bool
+        Taxels that read a rail of the ADC (bottom or top code) at every pressure.
+    noise : numpy.ndarray
+        Standard deviation of each taxel's reading over the repeats without load
+        [raw unit]; 0 for a noise-free calibration.
+    full_scale : float
+        The sensor's working range [Pa].
+    repeats : int
+        Frames averaged per pressure.
+    felt_fraction : numpy.ndarray, optional
+        Per taxel, the compressive normal stress at the sensing depth per pascal of plate
+        pressure [-], from the sensor's cover model; None when not known (ones are used).
+    """
+
+    sensor_name: str
+    pressures: np.ndarray = field(repr=False)
+    readings: np.ndarray = field(repr=False)
+    valid: np.ndarray = field(repr=False)
+    unresponsive: np.ndarray = field(repr=False)
+    pinned: np.ndarray = field(repr=False)
+    noise: np.ndarray = field(repr=False)
+    full_scale: float
+    repeats: int
+    felt_fraction: np.ndarray | None = field(default=None, repr=False)
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """Shape of one raw frame."""
+        return tuple(self.readings.shape[1:])
+
+    @property
+    def direction(self) -> int:
+        """+1 when the reading grows with load, -1 when it falls (microbend fibres)."""
+        change = np.median((self.readings[-1] - self.readings[0])[self.valid])
+        return 1 if not change < 0 else -1
+
+    @cached_property
+    def _response(self) -> PchipInterpolator:
+        flat = self.direction * self.readings.reshape(len(self.pressures), -1)
+        return PchipInterpolator(self.pressures, flat, axis=0)
+
+    def apply(self, raw: Any, *, clip: bool = False) -> np.ndarray:
+        """Calibrated frame: equivalent plate pressure of every taxel [Pa].
+
+        Parameters
+        ----------
+        raw : array_like, shape (..., *shape)
+            One or more raw frames of the sensor.
+        clip : bool, default False
+            Clip the result to [0, full_scale]. By default a reading on the far side of
+            the no-load reading continues the response's slope there, so noise about no
+            load stays zero-mean (clipping it at 0 would add a positive bias to every
+            unloaded taxel, and to any total force).
+
+        Returns
+        -------
+        numpy.ndarray, shape (..., *shape)
+            Pressure [Pa]. A reading beyond the full-scale one returns full scale (the
+            information is lost there); a reading that several pressures share (a flat part
+            of the response) returns the middle of them. NaN where `valid` is False.
+        """
+        raw = as_finite_array("raw", raw)
+        shape = self.shape
+        if raw.shape[raw.ndim - len(shape) :] != shape:
+            raise ValueError(f"`raw` must end in the calibrated shape {shape}, got {raw.shape}")
+        lead = raw.shape[: raw.ndim - len(shape)]
+        taxels = int(np.prod(shape))
+        knots = self.direction * self.readings.reshape(len(self.pressures), taxels)
+        oriented = self.direction * raw.reshape(-1, taxels)
+        x = np.clip(oriented, knots[0], knots[-1])
+        pressure = invert_pchip(self._response, self.pressures, knots, x)
+        if not clip:
+            below = oriented < knots[0]
+            pressure = np.where(below, (oriented - knots[0]) * self._rest_slope, pressure)
+        pressure = np.where(self.valid.reshape(taxels), pressure, np.nan)
+        return pressure.reshape(*lead, *shape)
+
+    @cached_property
+    def _rest_slope(self) -> np.ndarray:
+        """Pressure per unit reading at no load, per taxel [Pa per raw unit]; 0 if flat."""
+        knots = self.direction * self.readings.reshape(len(self.pressures), -1)
+        slope = self._response.c[2, 0]  # dr/dp of the first segment at p = 0
+        secant = (knots[1] - knots[0]) / (self.pressures[1] - self.pressures[0])
+        slope = np.where(slope > 0, slope, secant)
+        return np.divide(1.0, slope, out=np.zeros_like(slope), where=slope > 0)
+
+    def felt_pressure(self, raw: Any, *, clip: bool = False) -> np.ndarray:
+        """Pressure each taxel feels: the normal stress at its depth [Pa], NaN if excluded.
+
+        `apply` times `felt_fraction`. For cells that sense the stress at their depth
+        (resistive, FTIR, microbend, capacitive cells with their own modulus) this is their
+        input whatever the load: what a reconstruction's forward model predicts. For
+        sensors of the cover's strain or surface displacement it holds for flat loads only.
+        For microbend fibres it is the mean along each fibre.
+        """
+        fraction = 1.0 if self.felt_fraction is None else self.felt_fraction
+        return self.apply(raw, clip=clip) * fraction
+
+    # ----------------------------------------------------------------------- files
+    def save(self, path: str | os.PathLike[str], *, overwrite: bool = False) -> Path:
+        """Write the calibration to a ``.npz`` file; refuse to replace one unless told.
+
+        Examples
+        --------
+        >>> import tempfile, pathlib
+        >>> from taxel.sensor import make_sensor
+        >>> calibration = calibrate(make_sensor("capacitive4x4"), n_levels=6)
+        >>> path = pathlib.Path(tempfile.mkdtemp()) / "cap.npz"
+        >>> _ = calibration.save(path)
+        >>> Calibration.load(path).sensor_name
+        'capacitive4x4'
+        >>> calibration.save(path)
+        Traceback (most recent call last):
+        ...
+        FileExistsError: ... exists; pass overwrite=True to replace it
+        """
+        path = Path(path)
+        if path.suffix != ".npz":
+            raise ValueError(f"`path` must end in .npz, got {str(path)!r}")
+        if path.exists() and not overwrite:
+            raise FileExistsError(f"{path} exists; pass overwrite=True to replace it")
+        meta = {
+            "format": _FORMAT,
+            "sensor_name": self.sensor_name,
+            "full_scale": self.full_scale,
+            "repeats": self.repeats,
+        }
+        with open(path, "wb") as stream:
+            np.savez(
+                stream,
+                meta=np.array(json.dumps(meta)),
+                pressures=self.pressures,
+                readings=self.readings,
+                unresponsive=self.unresponsive,
+                pinned=self.pinned,
+                noise=self.noise,
+                felt_fraction=(
+                    np.ones(self.shape) if self.felt_fraction is None else self.felt_fraction
+                ),
+            )
+        return path
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> Calibration:
+        """Read a calibration written by `save`; a wrong or damaged file raises ValueError."""
+        path = Path(path)
+        if not path.is_file():
+            raise FileNotFoundError(f"no such file: {path}")
+        try:
+            with np.load(path, allow_pickle=False) as data:
+                arrays = {name: data[name] for name in data.files}
+            meta = json.loads(str(arrays.pop("meta")))
+        except (OSError, ValueError, KeyError) as error:
+            raise ValueError(f"{path}: not a taxel calibration file ({error})") from None
+        if meta.get("format") != _FORMAT:
+            raise ValueError(f"{path}: not a taxel calibration file (format {meta.get('format')})")
+        wanted = {"pressures", "readings", "unresponsive", "pinned", "noise", "felt_fraction"}
+        missing = wanted - set(arrays)
+        if missing:
+            raise ValueError(f"{path}: missing array(s) {', '.join(sorted(missing))}")
+        readings, pressures = arrays["readings"], arrays["pressures"]
+        shape = readings.shape[1:]
+        if readings.ndim < 2 or pressures.shape != readings.shape[:1]:
+            raise ValueError(f"{path}: readings {readings.shape} do not match {pressures.shape}")
+        for name in ("unresponsive", "pinned", "noise", "felt_fraction"):
+            if arrays[name].shape != shape:
+                raise ValueError(f"{path}: `{name}` has shape {arrays[name].shape}, not {shape}")
+        unresponsive = arrays["unresponsive"].astype(bool)
+        pinned = arrays["pinned"].astype(bool)
+        return cls(
+            sensor_name=str(meta["sensor_name"]),
+            pressures=pressures.astype(float),
+            readings=readings.astype(float),
+            valid=~(unresponsive | pinned),
+            unresponsive=unresponsive,
+            pinned=pinned,
+            noise=arrays["noise"].astype(float),
+            full_scale=float(meta["full_scale"]),
+            repeats=int(meta["repeats"]),
+            felt_fraction=arrays["felt_fraction"].astype(float),
+        )
+
+
+def check_calibration(calibration: Any, sensor: TactileSensor) -> Calibration:
+    """Raise unless `calibration` is a Calibration whose frames have the sensor's shape."""
+    if not isinstance(calibration, Calibration):
+        raise TypeError(f"`calibration` must be a Calibration, got {calibration!r}")
+    shape = np.shape(sensor.read(np.zeros(sensor.shape)))
+    if calibration.shape != shape:
+        raise ValueError(
+            f"`calibration` of {calibration.sensor_name!r} reads frames of shape "
+            f"{calibration.shape}, but {sensor.name!r} gives {shape}"
+        )
+    return calibration
+
+
+def _rails(sensor: TactileSensor) -> tuple[float, float] | None:
+    """(bottom, top) raw values a taxel pinned at a rail reads; None if unbounded."""
+    if sensor.readout.bits is not None:
+        return 0.0, float(2**sensor.readout.bits - 1)
+    camera_bits = getattr(sensor.transducer, "bits", None)
+    if sensor.transducer.signal_unit == "DN" and camera_bits is not None:
+        return 0.0, float(2**camera_bits - 1)
+    if sensor.readout.is_identity:
+        return None
+    return sensor.readout_chain.rails
+
+
+def calibrate(
+    sensor: TactileSensor,
+    *,
+    pressures: Any = None,
+    n_levels: int = 21,
+    repeats: int = 8,
+    rng: Any = None,
+    min_response: float = 0.1,
+) -> Calibration:
+    """Calibrate every taxel of a static sensor with flat-plate presses.
+
+    Parameters
+    ----------
+    sensor : TactileSensor
+        A sensor that measures static load (not piezoelectric, not photoelastic).
+    pressures : array_like, optional
+        Plate pressures [Pa], increasing from 0; default `n_levels` evenly spaced from 0
+        to the sensor's `full_scale`.
+    n_levels : int, default 21
+        Number of pressures when `pressures` is not given, >= 4.
+    repeats : int, default 8
+        Frames averaged per pressure (with noise on); 1 is used without noise.
+    rng : numpy.random.Generator or int, optional
+        Switches the sensor's noise on, as a real rig would see it; None calibrates on
+        noise-free frames.
+    min_response : float, default 0.1
+        A taxel whose reading changes from no load to the largest pressure by less than
+        this fraction of the median taxel's change is excluded (dead or stuck).
+
+    Returns
+    -------
+    Calibration
+
+    Raises
+    ------
+    ValueError
+        For a piezoelectric sensor (it sees only changes of load: a static calibration
+        is not defined) or a photoelastic one (a flat plate makes no fringes: its load is
+        fitted to whole fringe maps, see `taxel.transducers.fit_load_scale`).
+
+    Notes
+    -----
+    Per taxel, the mean readings are fitted by isotonic regression (monotonic in the
+    direction most taxels respond) and joined by a PCHIP cubic, which stays monotonic;
+    `Calibration.apply` inverts it by bisection on the right segment. The frames come from
+    ``sensor.frame_from_pressure(np.full(sensor.load_grid.shape, p))``.
+
+    A microbend array is calibrated per fibre, not per crossing: each reading is the sum
+    of the loads on the 16 crossings along a fibre, so no load on the whole array can tell
+    one crossing's response from its neighbours'. Its calibrated value is the mean plate
+    pressure along each fibre; `taxel.transducers.separable_pressure` turns the row and
+    column values into an image. Crosstalk between taxels is a spatial effect that no
+    per-taxel map can undo: under a plate it folds into each taxel's gain, under a local
+    load it still spreads the reading (about 1 % of full scale for resistive16).
+
+    Examples
+    --------
+    >>> from taxel.sensor import make_sensor
+    >>> sensor = make_sensor("resistive16")
+    >>> calibration = calibrate(sensor, rng=0)
+    >>> frame = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, 80e3))
+    >>> pressure = calibration.apply(frame.raw)
+    >>> round(float(np.abs(pressure - 80e3).max()) / sensor.full_scale, 4) < 0.005
+    True
+    >>> int(calibration.valid.sum())
+    256
+    """
+    if not isinstance(sensor, TactileSensor):
+        raise TypeError(f"`sensor` must be a TactileSensor, got {sensor!r}")
+    if sensor.is_dynamic:
+        raise ValueError(
+            f"`sensor` {sensor.name!r} senses only changes of load ({sensor.quantity}): "
+            "a static calibration is not defined"
+        )
+    if sensor.quantity == "stress_difference":
+        raise ValueError(
+            f"`sensor` {sensor.name!r} is photoelastic: a flat plate makes no fringes and its "
+            "load is fitted to whole fringe maps (fit_load_scale), not calibrated per taxel"
+        )
+    levels = _levels(sensor, pressures, n_levels)
+    if isinstance(repeats, bool) or int(repeats) != repeats or repeats < 1:
+        raise ValueError(f"`repeats` must be a positive integer, got {repeats!r}")
+    min_response = check_range("min_response", min_response, 0.0, 1.0, high_inclusive=False)
+    count = int(repeats) if rng is not None else 1
+    generator = None if rng is None else np.random.default_rng(rng)
+    means, lows, highs, spreads = [], [], [], []
+    for level in levels:
+        quantity = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, level)).quantity
+        frames = np.stack(
+            [np.asarray(sensor.read(quantity, rng=generator), float) for _ in range(count)]
+        )
+        means.append(frames.mean(axis=0))
+        lows.append(frames.min(axis=0))
+        highs.append(frames.max(axis=0))
+        spreads.append(frames.std(axis=0, ddof=1) if count > 1 else np.zeros(frames.shape[1:]))
+    readings = np.stack(means)
+    lowest, highest, noise = np.min(lows, axis=0), np.max(highs, axis=0), spreads[0]
+    change = readings[-1] - readings[0]
+    direction = -1.0 if np.median(change) < 0 else 1.0
+    fitted = direction * isotonic_increasing(direction * readings)
+    rise = direction * (fitted[-1] - fitted[0])
+    unresponsive = ~(rise > min_response * np.median(rise))
+    pinned = np.zeros(readings.shape[1:], dtype=bool)
+    rails = _rails(sensor)
+    if rails is not None:
+        tolerance = 0.5 if sensor.readout.bits or sensor.transducer.signal_unit == "DN" else 0.0
+        pinned = (highest <= rails[0] + tolerance) | (lowest >= rails[1] - tolerance)
+    return Calibration(
+        sensor_name=sensor.name,
+        pressures=levels,
+        readings=fitted,
+        felt_fraction=_felt_fraction(sensor, readings.shape[1:]),
+        valid=~(unresponsive | pinned),
+        unresponsive=unresponsive,
+        pinned=pinned,
+        noise=np.asarray(noise, dtype=float),
+        full_scale=float(sensor.full_scale),
+        repeats=count,
+    )
+
+
+def _felt_fraction(sensor: TactileSensor, shape: tuple[int, ...]) -> np.ndarray:
+    """Normal stress at the sensing depth per pascal of plate pressure, per channel [-]."""
+    plate = np.ones(sensor.load_grid.shape)
+    stress = taxel_fields(plate, sensor.load_grid, sensor.cover, need=("stress",)).stress
+    felt = np.clip(-stress, 0.0, None)
+    rows, cols = sensor.shape
+    if shape == (rows, cols):
+        return felt
+    if shape == (rows + cols,):  # fibres: the mean along each row, then each column
+        return np.concatenate([felt.mean(axis=1), felt.mean(axis=0)])
+    return np.ones(shape)
+
+
+def _levels(sensor: TactileSensor, pressures: Any, n_levels: int) -> np.ndarray:
+    if pressures is None:
+        if isinstance(n_levels, bool) or int(n_levels) != n_levels or n_levels < 4:
+            raise ValueError(f"`n_levels` must be an integer >= 4, got {n_levels!r}")
+        return np.linspace(0.0, sensor.full_scale, int(n_levels))
+    levels = as_finite_array("pressures", pressures, ndim=1)
+    if levels.size < 4 or levels[0] != 0 or np.any(np.diff(levels) <= 0):
+        raise ValueError(
+            "`pressures` must hold at least 4 increasing values starting at 0, "
+            f"got {np.array2string(levels, precision=3, threshold=6)}"
+        )
+    check_positive("pressures[-1]", levels[-1])
+    return levels

@@ -1,0 +1,104 @@
+import json
+
+import numpy as np
+import pytest
+
+from taxel.cli import main
+from taxel.mechanics import make_indenter
+from taxel.sensor import make_sensor
+
+
+def test_simulate_writes_the_raw_frame_and_the_truth(tmp_path, capsys):
+    out, truth = tmp_path / "frame.npy", tmp_path / "truth.npz"
+    argv = ["simulate", "--sensor", "resistive16", "--object", "sphere", "--force", "2"]
+    assert main([*argv, "--out", str(out), "--truth", str(truth), "--seed", "4"]) == 0
+    assert "wrote" in capsys.readouterr().out
+    raw = np.load(out)
+    sensor = make_sensor("resistive16")
+    expected = sensor.press(make_indenter("sphere"), normal_force=2.0, rng=4)
+    assert np.array_equal(raw, expected.raw)
+    data = np.load(truth)
+    meta = json.loads(str(data["meta"]))
+    assert meta["sensor"] == "resistive16" and meta["converged"]
+    assert data["pressure"].shape == sensor.load_grid.shape
+    cell = np.prod(data["spacing"])
+    assert data["pressure"].sum() * cell == pytest.approx(2.0, rel=1e-6)
+    assert data["contact"].dtype == bool and data["contact"].any()
+    assert -data["taxel_stress"].sum() * cell == pytest.approx(2.0, rel=0.03)
+    assert data["taxel_strain"].min() < 0 and data["taxel_displacement"].max() > 0
+
+
+def test_simulate_refuses_to_overwrite(tmp_path, capsys):
+    out = tmp_path / "frame.npy"
+    out.write_bytes(b"keep")
+    argv = ["simulate", "--sensor", "capacitive4x4", "--object", "sphere", "--force", "1"]
+    assert main([*argv, "--out", str(out)]) == 2
+    assert "exists; pass --overwrite" in capsys.readouterr().err
+    assert out.read_bytes() == b"keep"
+    assert main([*argv, "--out", str(out), "--overwrite"]) == 0
+    assert np.load(out).shape == (4, 4)
+
+
+def test_the_can_rim_crosses_the_sensor_by_default(tmp_path):
+    truth = tmp_path / "can.npz"
+    argv = ["simulate", "--sensor", "resistive16", "--object", "can", "--force", "3"]
+    argv += ["--oversampling", "4", "--out", str(tmp_path / "can.npy"), "--truth", str(truth)]
+    assert main(argv) == 0
+    data = np.load(truth)
+    contact = data["contact"]
+    assert contact.shape == (64, 64)  # 0.5 mm cells resolve the 1 mm lip
+    # an arc of radius 26 mm through the middle, its centre 26 mm to the left
+    rows = np.flatnonzero(contact.any(axis=1))
+    assert rows.min() == 0 and rows.max() == 63
+    assert 31 <= np.flatnonzero(contact[32]).mean() <= 32
+    x = (np.arange(64) - 31.5) * 0.5e-3
+    y = x[:, None]
+    radius = np.hypot(x[None, :] + 0.026, y)[contact]
+    assert np.all(np.abs(radius - 0.026) < 1e-3)
+    assert json.loads(str(data["meta"]))["position"] == [-0.026, 0.0]
+
+
+@pytest.mark.parametrize(
+    ("extra", "match"),
+    [
+        (["--sensor", "resistive99", "--object", "pen"], "`name` must be one of vhdta128"),
+        (["--sensor", "resistive16", "--object", "cup"], "`name` must be one of pen"),
+        (["--sensor", "resistive16", "--object", "can", "--x", "0"], "is over no cell of the"),
+        (["--sensor", "capacitive4x4", "--object", "punch"], "refine the grid with --overs"),
+        (["--sensor", "resistive16", "--object", "pen", "--angle", "nan"], "must be finite"),
+    ],
+)
+def test_bad_arguments_exit_2_with_one_line(tmp_path, capsys, extra, match):
+    argv = ["simulate", *extra, "--out", str(tmp_path / "f.npy")]
+    if "--force" not in extra:
+        argv += ["--force", "1"]
+    try:
+        code = main(argv)
+    except SystemExit as stop:  # argparse's own errors
+        code = stop.code
+    assert code == 2
+    err = capsys.readouterr().err
+    assert match in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "f.npy").exists()
+
+
+@pytest.mark.parametrize(
+    ("extra", "match"),
+    [
+        (["--force", "0"], "argument --force: must be > 0, got 0"),
+        (["--force", "1", "--seed", "-3"], "argument --seed: must be >= 0"),
+        (["--force", "1", "--out", "frame.csv"], "--out must name a .npy file"),
+        (["--force", "1", "--oversampling", "0"], "argument --oversampling: must lie in 1..16"),
+    ],
+)
+def test_bad_numbers_exit_2_with_one_line(tmp_path, capsys, extra, match):
+    argv = ["simulate", "--sensor", "resistive16", "--object", "pen"]
+    if "--out" not in extra:
+        extra = [*extra, "--out", str(tmp_path / "f.npy")]
+    try:
+        code = main([*argv, *extra])
+    except SystemExit as stop:
+        code = stop.code
+    assert code == 2
+    err = capsys.readouterr().err
+    assert match in err and len(err.strip().splitlines()) == 1
