@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from taxel.report._context import DemoContext
+from taxel.report._design import harmon_criteria
 from taxel.report._html import render_html
 from taxel.report._inverse import inverse_problem
 from taxel.report._mechanics import forward_problem
@@ -28,6 +29,7 @@ EXPERIMENTS: tuple[ExperimentFunction, ...] = (
     texture_table,
     forward_problem,
     inverse_problem,
+    harmon_criteria,
 )
 
 

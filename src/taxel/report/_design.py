@@ -1,0 +1,101 @@
+"""Harmon's criteria (chapter section 25.2) measured on the VHDTA and a 16 x 16 array."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from taxel.report._context import DemoContext
+from taxel.report._model import Experiment, Table, Verdict
+from taxel.sensor import HarmonRow, harmon_table
+
+__all__ = ["harmon_criteria"]
+
+_SCALE = {
+    "m": (1e3, "mm"),
+    "N": (1e3, "mN"),
+    "s": (1e3, "ms"),
+    "-": (1.0, ""),
+    "1/m^2": (1e-4, "/cm^2"),
+    "Pa": (1e-6, "MPa"),
+}
+
+
+def _format(value: float | None, unit: str) -> str:
+    if value is None:
+        return "-"
+    factor, shown = _SCALE.get(unit, (1.0, unit))
+    return f"{value * factor:.3g} {shown}".strip()
+
+
+def _target(row: HarmonRow) -> str:
+    low, high = row.target
+    factor, shown = _SCALE.get(row.unit, (1.0, row.unit))
+    if low is not None and high is not None:
+        return f"{low * factor:.3g}-{high * factor:.3g} {shown}".strip()
+    if low is not None:
+        return f">= {low * factor:.3g} {shown}".strip()
+    if high is not None:
+        return f"<= {high * factor:.3g} {shown}".strip()
+    return "-"
+
+
+def _rows(table) -> list[tuple[str, str, str, str]]:
+    verdict = {True: "pass", False: "FAIL", None: "info"}
+    return [
+        (row.criterion, _format(row.value, row.unit), _target(row), verdict[row.passed])
+        for row in table.rows
+    ]
+
+
+def harmon_criteria(
+    context: DemoContext, *, sensors: tuple[str, ...] = ("vhdta128", "resistive16")
+) -> Experiment:
+    """Harmon's table for the Ellis seed's sensor and for a 16 x 16 resistive array."""
+    tables = {name: harmon_table(context.sensor(name), rng=context.seed) for name in sensors}
+    first = context.sensor(sensors[0])
+    resolution = tables[sensors[0]].row("spatial resolution")
+    levels = tables[sensors[0]].row("reliable levels").value
+    bits = float(np.log2(levels)) if levels else 0.0
+    depth = first.cover.depth
+    density = first.geometry.density
+    return Experiment(
+        key="harmon",
+        title="Harmon's criteria for the VHDTA and the 16 x 16 array",
+        seed_reference="Saad et al., section 25.2 (Harmon's list); Ellis, section 1",
+        summary="Each sensor simulated and measured against Harmon's list: spatial resolution "
+        "is the smallest separation at which two point loads give two peaks in the "
+        "calibrated frame; sensitivity the smallest force on one element that changes the "
+        "reading beyond its noise; dynamic range full scale over that; hysteresis from a "
+        "loading-unloading cycle; monotonic response from a load sweep.",
+        tables=tuple(
+            Table(
+                f"{name} ({table.density_class})",
+                ("criterion", "measured", "Harmon's target", "verdict"),
+                _rows(table),
+            )
+            for name, table in tables.items()
+        ),
+        verdicts=(
+            Verdict(
+                "the seed's sensor is a VHDTA of about 1504 taxels per cm^2",
+                f"{density:.0f} /cm^2, {first.density_class}",
+                "~1504 /cm^2, VHDTA",
+                first.density_class == "VHDTA" and abs(density / 1504 - 1) < 0.01,
+            ),
+            Verdict(
+                "two points are resolved at about the cover depth d (0.5 d to 2 d), "
+                "not at the taxel pitch",
+                f"{_format(resolution.value, resolution.unit)} = "
+                f"{(resolution.value or 0) / depth:.2f} d",
+                f"d = {depth * 1e3:g} mm, pitch {first.taxel_pitch[0] * 1e3:.3f} mm",
+                resolution.value is not None and 0.5 <= resolution.value / depth <= 2.0,
+            ),
+            Verdict(
+                "5 to 8 bits of reliable levels over the working range",
+                f"{bits:.1f} bits ({levels:.0f} levels)",
+                "5 to 8 bits over 60 psi",
+                5.0 <= bits <= 8.0,
+            ),
+        ),
+        numbers={name: table.to_dict() for name, table in tables.items()},
+    )
