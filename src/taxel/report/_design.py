@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from taxel.report._context import DemoContext
-from taxel.report._model import Experiment, Table, Verdict
+from taxel.report._figures import figure_png, new_figure
+from taxel.report._model import Experiment, Figure, Table, Verdict
 from taxel.sensor import HarmonRow, harmon_table
 
 __all__ = ["harmon_criteria"]
@@ -45,6 +46,28 @@ def _rows(table) -> list[tuple[str, str, str, str]]:
         (row.criterion, _format(row.value, row.unit), _target(row), verdict[row.passed])
         for row in table.rows
     ]
+
+
+def _resolution_figure(tables: dict) -> Figure:
+    figure = new_figure(4.6, 3.2)
+    ax = figure.add_subplot()
+    for name, table in tables.items():
+        measured = table.resolution
+        if measured is None:
+            continue
+        line = ax.plot(measured.separations * 1e3, measured.dips, "o-", ms=3, label=name)[0]
+        if measured.resolution is not None:
+            ax.axvline(measured.resolution * 1e3, color=line.get_color(), ls=":", lw=1)
+        threshold = measured.dip
+    ax.axhline(threshold, color="0.4", lw=0.8, ls="--", label="resolved above this dip")
+    ax.set_xlabel("separation of two point loads [mm]")
+    ax.set_ylabel("dip between the peaks (fraction)")
+    ax.legend(fontsize=7)
+    return Figure(
+        "two-point test in the calibrated frame: the dotted lines mark each sensor's "
+        "measured spatial resolution",
+        figure_png(figure),
+    )
 
 
 def harmon_criteria(
