@@ -90,6 +90,7 @@ def harmon_criteria(
         "calibrated frame; sensitivity the smallest force on one element that changes the "
         "reading beyond its noise; dynamic range full scale over that; hysteresis from a "
         "loading-unloading cycle; monotonic response from a load sweep.",
+        figures=(_resolution_figure(tables),),
         tables=tuple(
             Table(
                 f"{name} ({table.density_class})",
