@@ -5,6 +5,13 @@ Robot side: scene, probe interface, simulated finger
 SceneObject, ProfileObject, Box, make_ball, Probe, ProbeReading, SimulatedFinger,
 ProcedureStep, step_from_reading
 
+Surface normal, planarity, edges and corners by probing
+-------------------------------------------------------
+calibrate_pad, PadCalibration, estimate_contact_point, ContactPoint, fit_plane,
+PlaneProbing, probe_plane, PlaneEstimate, CornerProbing, locate_corner, CornerEstimate,
+box_corner_frame; simulated trials with known answers: plane_probing_trial, PlaneTrial,
+corner_probing_trial, CornerTrial
+
 Texture from sliding (spatial-frequency signature)
 --------------------------------------------------
 texture_signature, TextureSignature, spatial_power_spectrum, band_power, texture_features,
@@ -15,8 +22,27 @@ Texture classification (k nearest neighbours, JSON models)
 fit_texture_classifier, TextureClassifier, cross_validate_texture, CrossValidation
 """
 
+from taxel.active._contact_point import (
+    ContactPoint,
+    PadCalibration,
+    calibrate_pad,
+    estimate_contact_point,
+)
 from taxel.active._finger import SimulatedFinger
 from taxel.active._probe import Probe, ProbeReading
+from taxel.active._probe_corner import (
+    CornerEstimate,
+    CornerProbing,
+    box_corner_frame,
+    locate_corner,
+)
+from taxel.active._probe_plane import PlaneEstimate, PlaneProbing, fit_plane, probe_plane
+from taxel.active._probing_trials import (
+    CornerTrial,
+    PlaneTrial,
+    corner_probing_trial,
+    plane_probing_trial,
+)
 from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._scene import Box, ProfileObject, SceneObject, make_ball
 from taxel.active._spatial_spectrum import band_power, spatial_power_spectrum
@@ -36,7 +62,15 @@ from taxel.active._texture_signature import (
 __all__ = [
     "DEFAULT_BAND_EDGES",
     "Box",
+    "ContactPoint",
+    "CornerEstimate",
+    "CornerProbing",
+    "CornerTrial",
     "CrossValidation",
+    "PadCalibration",
+    "PlaneEstimate",
+    "PlaneProbing",
+    "PlaneTrial",
     "Probe",
     "ProbeReading",
     "ProcedureStep",
@@ -46,9 +80,17 @@ __all__ = [
     "TextureClassifier",
     "TextureSignature",
     "band_power",
+    "box_corner_frame",
+    "calibrate_pad",
+    "corner_probing_trial",
     "cross_validate_texture",
+    "estimate_contact_point",
+    "fit_plane",
     "fit_texture_classifier",
+    "locate_corner",
     "make_ball",
+    "plane_probing_trial",
+    "probe_plane",
     "spatial_power_spectrum",
     "step_from_reading",
     "texture_features",

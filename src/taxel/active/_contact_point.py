@@ -218,7 +218,8 @@ class _SensedModel:
     def __init__(self, operator: ConvolutionOperator, sensor: TactileSensor) -> None:
         self._operator = operator
         self._grid = sensor.load_grid
-        self._block = self._grid.shape[0] // sensor.shape[0], self._grid.shape[1] // sensor.shape[1]
+        rows, cols = sensor.shape
+        self._block = self._grid.shape[0] // rows, self._grid.shape[1] // cols
         self._unit = self._grid.taxel_means(operator.apply(np.ones(self._grid.shape)))
 
     def apply(self, pressure: np.ndarray) -> np.ndarray:

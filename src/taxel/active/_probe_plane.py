@@ -81,7 +81,7 @@ class PlaneEstimate:
 
     @property
     def offset(self) -> float:
-        """d of the plane n . p = d [m]."""
+        """The offset d of the plane n . p = d [m]."""
         return float(self.normal @ self.point)
 
     def distance(self, points: Any) -> np.ndarray:
@@ -152,6 +152,9 @@ class PlaneProbing:
     calibration : PadCalibration, optional
         The sensor's flat-plate calibration; made with `calibrate_pad` on first use when
         omitted.
+    model : TactileSensor, optional
+        The sensor model whose cover turns frames into contact points; default the probe's
+        own sensor. A deliberately wrong one measures the sensitivity to model errors.
 
     Notes
     -----
@@ -162,12 +165,19 @@ class PlaneProbing:
     """
 
     def __init__(
-        self, *, normal_force: float = 5.0, calibration: PadCalibration | None = None
+        self,
+        *,
+        normal_force: float = 5.0,
+        calibration: PadCalibration | None = None,
+        model: TactileSensor | None = None,
     ) -> None:
         self.normal_force = check_positive("normal_force", normal_force)
         if calibration is not None and not isinstance(calibration, PadCalibration):
             raise TypeError(f"`calibration` must be a PadCalibration, got {calibration!r}")
+        if model is not None and not isinstance(model, TactileSensor):
+            raise TypeError(f"`model` must be a TactileSensor, got {model!r}")
         self.calibration = calibration
+        self.model = model
 
     def run(self, probe: Probe, poses: Sequence[Any]) -> PlaneEstimate:
         """Press at each approach pose in turn and fit the plane.
@@ -197,7 +207,12 @@ class PlaneProbing:
         outward = np.zeros(3)
         for index, pose in enumerate(poses):
             reading, contact = press_and_locate(
-                probe, pose, self.normal_force, calibration, label=f"probe {index + 1}"
+                probe,
+                pose,
+                self.normal_force,
+                calibration,
+                label=f"probe {index + 1}",
+                model=self.model,
             )
             point = transform_points(reading.pose, contact.point)
             points.append(point)
@@ -243,14 +258,20 @@ def check_poses(poses: Sequence[Any], *, name: str = "poses") -> list[np.ndarray
 
 
 def press_and_locate(
-    probe: Probe, pose: np.ndarray, normal_force: float, calibration: PadCalibration, *, label: str
+    probe: Probe,
+    pose: np.ndarray,
+    normal_force: float,
+    calibration: PadCalibration,
+    *,
+    label: str,
+    model: TactileSensor | None = None,
 ) -> tuple[ProbeReading, ContactPoint]:
     """Move, press, read the contact point and retract; on an error retract and re-raise."""
     try:
         probe.move_to(pose)
         reading = probe.press(normal_force=normal_force)
         contact = estimate_contact_point(
-            reading.frame.raw, reading.normal_force, probe.sensor, calibration
+            reading.frame.raw, reading.normal_force, model or probe.sensor, calibration
         )
     except ValueError as error:
         probe.retract()
