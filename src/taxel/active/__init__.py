@@ -12,6 +12,13 @@ PlaneProbing, probe_plane, PlaneEstimate, CornerProbing, locate_corner, CornerEs
 box_corner_frame; simulated trials with known answers: plane_probing_trial, PlaneTrial,
 corner_probing_trial, CornerTrial
 
+Slip: incipient and gross, from pattern displacement and a PVDF array
+--------------------------------------------------------------------
+SlipDetector, detect_slip, SlipDetection, SlipEvent; hold-then-slip simulation:
+SlipScenario, random_slip_scenario, simulate_slip, SlipSequence, slip_sensors,
+SLIP_DISPLACEMENT, ANNULUS_GROWTH; scoring: slip_trials, score_slip_detection,
+evaluate_slip_detection, SlipEvaluation
+
 Texture from sliding (spatial-frequency signature)
 --------------------------------------------------
 texture_signature, TextureSignature, spatial_power_spectrum, band_power, texture_features,
@@ -45,6 +52,22 @@ from taxel.active._probing_trials import (
 )
 from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._scene import Box, ProfileObject, SceneObject, make_ball
+from taxel.active._slip import SlipDetection, SlipDetector, SlipEvent, detect_slip
+from taxel.active._slip_evaluation import (
+    SlipEvaluation,
+    evaluate_slip_detection,
+    score_slip_detection,
+    slip_trials,
+)
+from taxel.active._slip_simulation import (
+    ANNULUS_GROWTH,
+    SLIP_DISPLACEMENT,
+    SlipScenario,
+    SlipSequence,
+    random_slip_scenario,
+    simulate_slip,
+    slip_sensors,
+)
 from taxel.active._spatial_spectrum import band_power, spatial_power_spectrum
 from taxel.active._texture_classifier import (
     CrossValidation,
@@ -60,7 +83,9 @@ from taxel.active._texture_signature import (
 )
 
 __all__ = [
+    "ANNULUS_GROWTH",
     "DEFAULT_BAND_EDGES",
+    "SLIP_DISPLACEMENT",
     "Box",
     "ContactPoint",
     "CornerEstimate",
@@ -77,6 +102,12 @@ __all__ = [
     "ProfileObject",
     "SceneObject",
     "SimulatedFinger",
+    "SlipDetection",
+    "SlipDetector",
+    "SlipEvaluation",
+    "SlipEvent",
+    "SlipScenario",
+    "SlipSequence",
     "TextureClassifier",
     "TextureSignature",
     "band_power",
@@ -84,13 +115,20 @@ __all__ = [
     "calibrate_pad",
     "corner_probing_trial",
     "cross_validate_texture",
+    "detect_slip",
     "estimate_contact_point",
+    "evaluate_slip_detection",
     "fit_plane",
     "fit_texture_classifier",
     "locate_corner",
     "make_ball",
     "plane_probing_trial",
     "probe_plane",
+    "random_slip_scenario",
+    "score_slip_detection",
+    "simulate_slip",
+    "slip_sensors",
+    "slip_trials",
     "spatial_power_spectrum",
     "step_from_reading",
     "texture_features",
