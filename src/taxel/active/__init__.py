@@ -21,6 +21,8 @@ evaluate_slip_detection, SlipEvaluation
 
 Texture from sliding (spatial-frequency signature)
 --------------------------------------------------
+TextureSliding, slide_texture, TextureSlide, SLIDING_BAND_EDGES, Grating, SampledProfile;
+texture_speed_study, TextureSpeedStudy, texture_surface (speed invariance, classification);
 texture_signature, TextureSignature, spatial_power_spectrum, band_power, texture_features,
 DEFAULT_BAND_EDGES
 
@@ -52,6 +54,14 @@ from taxel.active._probing_trials import (
 )
 from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._scene import Box, ProfileObject, SceneObject, make_ball
+from taxel.active._sliding_texture import (
+    SLIDING_BAND_EDGES,
+    Grating,
+    SampledProfile,
+    TextureSlide,
+    TextureSliding,
+    slide_texture,
+)
 from taxel.active._slip import SlipDetection, SlipDetector, SlipEvent, detect_slip
 from taxel.active._slip_evaluation import (
     SlipEvaluation,
@@ -81,10 +91,16 @@ from taxel.active._texture_signature import (
     texture_features,
     texture_signature,
 )
+from taxel.active._texture_study import (
+    TextureSpeedStudy,
+    texture_speed_study,
+    texture_surface,
+)
 
 __all__ = [
     "ANNULUS_GROWTH",
     "DEFAULT_BAND_EDGES",
+    "SLIDING_BAND_EDGES",
     "SLIP_DISPLACEMENT",
     "Box",
     "ContactPoint",
@@ -92,6 +108,7 @@ __all__ = [
     "CornerProbing",
     "CornerTrial",
     "CrossValidation",
+    "Grating",
     "PadCalibration",
     "PlaneEstimate",
     "PlaneProbing",
@@ -100,6 +117,7 @@ __all__ = [
     "ProbeReading",
     "ProcedureStep",
     "ProfileObject",
+    "SampledProfile",
     "SceneObject",
     "SimulatedFinger",
     "SlipDetection",
@@ -110,6 +128,9 @@ __all__ = [
     "SlipSequence",
     "TextureClassifier",
     "TextureSignature",
+    "TextureSlide",
+    "TextureSliding",
+    "TextureSpeedStudy",
     "band_power",
     "box_corner_frame",
     "calibrate_pad",
@@ -127,10 +148,13 @@ __all__ = [
     "random_slip_scenario",
     "score_slip_detection",
     "simulate_slip",
+    "slide_texture",
     "slip_sensors",
     "slip_trials",
     "spatial_power_spectrum",
     "step_from_reading",
     "texture_features",
     "texture_signature",
+    "texture_speed_study",
+    "texture_surface",
 ]
