@@ -40,10 +40,11 @@ from functools import lru_cache
 from typing import Any
 
 import numpy as np
-from scipy import ndimage, signal
+from scipy import signal
 
 from taxel._validation import check_choice
-from taxel.mechanics import Sphere, depth_stress_operator, solve_contact
+from taxel.active._slip_frames import sensed_stress
+from taxel.mechanics import Sphere, solve_contact
 from taxel.sensor import TactileSensor, make_sensor
 
 __all__ = [
@@ -213,25 +214,6 @@ def _master_contact(
     return contact.pressure, spacing, float(np.sqrt(contact.contact_area / np.pi))
 
 
-@lru_cache(maxsize=4)
-def _cerruti_kernels(sensor: TactileSensor) -> tuple[np.ndarray, np.ndarray]:
-    """sigma_z at the sensing depth per unit traction on a cell, along x and along y."""
-    grid = sensor.load_grid
-    dy, dx = grid.spacing
-    rows, cols = grid.shape
-    depth = sensor.cover.depth
-    sub = (np.arange(4) + 0.5) / 4 - 0.5  # 4 x 4 points per cell
-    oy, ox = np.meshgrid(np.arange(-rows + 1, rows) * dy, np.arange(-cols + 1, cols) * dx)
-    kx, ky = np.zeros(oy.T.shape), np.zeros(oy.T.shape)
-    for sy in sub * dy:
-        for sx in sub * dx:
-            px, py = (ox + sx).T, (oy + sy).T
-            rho5 = (px**2 + py**2 + depth**2) ** 2.5
-            kx += -3 * px * depth**2 / (2 * np.pi * rho5) / 16
-            ky += -3 * py * depth**2 / (2 * np.pi * rho5) / 16
-    return kx * dx * dy, ky * dx * dy
-
-
 def _events(
     rng: np.random.Generator, rate: np.ndarray, time: np.ndarray, scenario: SlipScenario
 ) -> np.ndarray:
@@ -305,74 +287,6 @@ def _kinematics(scenario: SlipScenario, time: np.ndarray, rng: np.random.Generat
     }
 
 
-def _block_map(kernel: np.ndarray, sensor: TactileSensor) -> np.ndarray:
-    """(cells, taxels) matrix of a linear convolution kernel followed by taxel means.
-
-    `kernel` holds K(x_i - x_j) on offsets -(n-1)..(n-1); the response at cell i to a unit
-    load on every cell j is K[i - j], a flipped window of the kernel.
-    """
-    grid = sensor.load_grid
-    rows, cols = grid.shape
-    block_rows, block_cols = rows // sensor.shape[0], cols // sensor.shape[1]
-    result = np.zeros((sensor.shape[0], sensor.shape[1], rows, cols))
-    for row in range(rows):
-        for col in range(cols):
-            window = kernel[row : row + rows, col : col + cols][::-1, ::-1]
-            result[row // block_rows, col // block_cols] += window
-    result /= block_rows * block_cols
-    return result.reshape(sensor.shape[0] * sensor.shape[1], rows * cols).T
-
-
-@lru_cache(maxsize=4)
-def _taxel_operators(sensor: TactileSensor) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Dense maps from load-grid cells to sigma_z per taxel: pressure, traction x, traction y."""
-    grid, cover = sensor.load_grid, sensor.cover
-    operator = depth_stress_operator(
-        grid.shape, grid.spacing, cover.depth, cover.material, thickness=cover.thickness
-    )
-    kx, ky = _cerruti_kernels(sensor)
-    return tuple(_block_map(kernel, sensor) for kernel in (operator.kernel, kx, ky))
-
-
-def _sensed_stress(
-    sensor: TactileSensor,
-    master: np.ndarray,
-    spacing: float,
-    kinematics: dict,
-    offsets: np.ndarray,
-    scenario: SlipScenario,
-) -> np.ndarray:
-    """sigma_z at the sensing depth, per taxel and frame [Pa] (< 0 in compression)."""
-    grid = sensor.load_grid
-    x, y = grid.coordinates()
-    centre = (master.shape[0] - 1) / 2
-    cell = grid.spacing[0] * grid.spacing[1]
-    n_frames = offsets.shape[0]
-    pressure = np.empty((n_frames, *grid.shape))
-    traction = np.empty_like(pressure)
-    for k in range(n_frames):
-        u, v = (x - offsets[k, 0]) / spacing, (y - offsets[k, 1]) / spacing
-        sample = ndimage.map_coordinates(master, [v + centre, u + centre], order=1, cval=0.0)
-        scale = (
-            scenario.normal_force * kinematics["force_scale"][k] / max(sample.sum() * cell, 1e-300)
-        )
-        pressure[k] = sample * scale
-        traction[k] = pressure[k]
-        ratio = kinematics["stick"][k]
-        if ratio > 0.02:  # Ciavarella-Jager: minus the same field at the reduced load N'
-            inner = ndimage.map_coordinates(
-                master, [v / ratio + centre, u / ratio + centre], order=1, cval=0.0
-            )
-            traction[k] -= ratio * inner * scale
-    traction *= kinematics["friction"][:, None, None]
-    to_pressure, to_x, to_y = _taxel_operators(sensor)
-    along = np.cos(scenario.direction) * to_x + np.sin(scenario.direction) * to_y
-    pressure, traction = pressure.reshape(n_frames, -1), traction.reshape(n_frames, -1)
-    loaded = np.nonzero(pressure.any(axis=0) | traction.any(axis=0))[0]  # the path's cells
-    stress = pressure[:, loaded] @ to_pressure[loaded] + traction[:, loaded] @ along[loaded]
-    return stress.reshape(n_frames, *sensor.shape)
-
-
 def simulate_slip(
     scenario: SlipScenario, *, sensors: tuple[TactileSensor, TactileSensor] | None = None
 ) -> SlipSequence:
@@ -432,8 +346,12 @@ def simulate_slip(
     path = float(travel.max() - travel.min())
     start = np.asarray(s.start) - direction * path / 2
     offsets = start + travel[:, None] * direction
-    static_stress = _sensed_stress(static, master, spacing, kinematics, offsets, s)
-    piezo_stress = _sensed_stress(piezo, master, spacing, kinematics, offsets, s)
+    static_stress = sensed_stress(
+        static, master, spacing, kinematics, offsets, s.normal_force, s.direction
+    )
+    piezo_stress = sensed_stress(
+        piezo, master, spacing, kinematics, offsets, s.normal_force, s.direction
+    )
     # the press happened long before: the charge amplifiers have forgotten it
     piezo_frames = piezo.read_sequence(piezo_stress - piezo_stress[0], rng=rng)
     static_frames = static.read_sequence(np.clip(-static_stress, 0.0, None), rng=rng)
