@@ -205,7 +205,9 @@ def _texture(quick: bool) -> list[str]:
         f"{study.centroid_spread.max():.1%} across a {max(speeds) / min(speeds):g}x range of "
         "speeds. The rasp (teeth every "
         "3 mm) and the 3 mm grating both peak near 1 / 3 mm; the screen (holes every 6 mm) "
-        "and the 6 mm grating near 1 / 6 mm, quantised to the 100 cycles/m resolution. The "
+        "and the 6 mm grating near 1 / 6 mm, quantised to the 100 cycles/m resolution (the "
+        "broadband foam and the screen have nearly equal power in two neighbouring bins, so "
+        "their peak may flip between them; the centroid is the robust descriptor). The "
         "simulated contact is quasi-static (no dynamics of the finger), so the signature's "
         "invariance here is limited by sampling and noise only; the band changes of a few dB "
         "are in the weakest bands, near the noise.\n",

@@ -13,7 +13,7 @@ Physics (one trial, `SlipScenario`):
   same contact at N' = N (1 - T / mu_s N), for a Hertz-like field the field shrunk by c/a
   in size and height. The object moves with the pad's surface by
   delta = K mu_s N [1 - (1 - T / mu_s N)^(2/3)], K = 3 (2 - nu) / (16 G a) (rigid object on
-  the pad, half-space compliance; Johnson, Contact Mechanics, eq. 7.42).
+  the pad, half-space compliance; Johnson, Contact Mechanics, chapter 7).
 - Gross slip once T reaches mu_s N: friction relaxes to mu_k with time constant tau and the
   object slides, v(t) = v_s (1 - exp(-t' / tau)); the pattern translates by the sliding
   displacement s(t) plus the elastic shift K mu N.
