@@ -130,3 +130,14 @@ def test_contact_point_maps_to_the_base_frame(sensor):
     # the pressed sensor origin sits on the ball's (indented) top
     assert top[:2] == pytest.approx([0.099, 0.051], abs=1e-12)
     assert top[2] == pytest.approx(12.5e-3 - reading.frame.contact.indentation, abs=1e-9)
+
+
+def test_slide_over_holes_warm_starts_from_material_only(sensor):
+    # a perforated screen: frames whose last contact now lies over a hole used to warm-start
+    # the solver with pressure on an infinite height (NaN gap)
+    plate = ProfileObject("screen", profile=make_indenter("screen"), top=0.01)
+    finger = SimulatedFinger(sensor, [plate], make_pose(DOWN, [0.0, 0.0, 0.0105]))
+    path = np.array([[0.0, 0.0, 0.0105], [0.008, 0.0, 0.0105]])
+    readings = finger.slide(path, speed=0.08, normal_force=3.0)
+    assert all(r.normal_force == pytest.approx(3.0) for r in readings)
+    assert all(r.frame.contact.converged for r in readings)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -124,6 +125,16 @@ class SimulatedFinger:
         first_touch = float(np.nanmin(distances))
         nearest = self._nearest_object(self._pose)
         heights = np.where(np.isfinite(distances), distances - first_touch, np.inf)
+        initial = self._last if self._last is not None and normal_force is not None else None
+        if initial is not None and not np.isfinite(heights[initial.contact]).all():
+            # the last frame pressed where there is now a hole: start from material only
+            # (a warm start on an infinite height makes the solver's gap NaN)
+            solid = np.isfinite(heights)
+            initial = replace(
+                initial,
+                pressure=np.where(solid, initial.pressure, 0.0),
+                contact=initial.contact & solid,
+            )
         contact = solve_contact(
             heights,
             self._sensor.load_grid.spacing,
@@ -132,7 +143,7 @@ class SimulatedFinger:
             indentation=depth,
             indenter_material=nearest.material,
             thickness=self._sensor.cover.thickness,
-            initial=self._last if self._last is not None and normal_force is not None else None,
+            initial=initial,
         )
         if contact.normal_force > self.max_force:
             raise ValueError(

@@ -1,0 +1,185 @@
+"""Contact points, plane probing and corner location on objects with known geometry."""
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from taxel.active import (
+    Box,
+    ProfileObject,
+    SimulatedFinger,
+    box_corner_frame,
+    calibrate_pad,
+    corner_probing_trial,
+    estimate_contact_point,
+    fit_plane,
+    locate_corner,
+    plane_probing_trial,
+    probe_plane,
+)
+from taxel.frames import make_pose, transform_directions, transform_points
+from taxel.mechanics import Sphere
+from taxel.sensor import make_sensor
+
+DOWN = np.diag([1.0, -1.0, -1.0])
+
+
+@pytest.fixture(scope="module")
+def sensor():
+    return make_sensor("resistive16")
+
+
+@pytest.fixture(scope="module")
+def calibration(sensor):
+    return calibrate_pad(sensor)
+
+
+def test_calibration_reads_flat_presses_back(sensor, calibration):
+    for pressure in (10e3, 80e3, 150e3):
+        frame = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, pressure), rng=3)
+        equivalent = calibration.equivalent_pressure(frame.raw)
+        assert np.median(equivalent) == pytest.approx(pressure, rel=0.01)
+        assert np.abs(equivalent - pressure).max() < 4 * calibration.noise + 0.02 * pressure
+    assert 0 < calibration.noise < 2e3  # a fraction of a percent of the 200 kPa range
+
+
+def test_contact_point_of_a_tilted_face_lies_on_the_face(sensor, calibration):
+    # a pad tilted by 6 degrees over a flat box top touches with one side only: the pad is
+    # compressed there by a few tenths of a millimetre, and the contact point must sit on
+    # the true face within a few tens of micrometres
+    box = Box("box", size=(0.2, 0.2, 0.04))
+    tilt = Rotation.from_euler("x", 6, degrees=True).as_matrix()
+    finger = SimulatedFinger(sensor, [box], make_pose(tilt @ DOWN, [0.01, 0.0, 0.06]), rng=1)
+    reading = finger.press(normal_force=6.0)
+    contact = estimate_contact_point(reading.frame.raw, reading.normal_force, sensor, calibration)
+    point = transform_points(reading.pose, contact.point)
+    assert contact.touches_border
+    assert 20e-6 < contact.compression < 0.6e-3
+    assert point[2] == pytest.approx(0.04, abs=30e-6)
+    # the point is where the true contact is (its pressure-weighted centre), within a taxel
+    truth = reading.frame.contact
+    x, y = sensor.load_grid.coordinates()
+    weight = truth.pressure / truth.pressure.sum()
+    true_xy = np.array([(weight * x).sum(), (weight * y).sum()])
+    assert np.linalg.norm(contact.point[:2] - true_xy) < 2e-3
+
+
+def test_flat_contact_gives_the_face_normal(sensor, calibration):
+    box = Box("box", size=(0.2, 0.2, 0.04))
+    finger = SimulatedFinger(sensor, [box], make_pose(DOWN, [0.0, 0.0, 0.05]), rng=2)
+    reading = finger.press(normal_force=10.0)
+    contact = estimate_contact_point(reading.frame.raw, reading.normal_force, sensor, calibration)
+    assert contact.n_cells == 256
+    normal = transform_directions(reading.pose, contact.normal)
+    assert np.degrees(np.arccos(normal @ [0.0, 0.0, 1.0])) < 0.5
+    assert transform_points(reading.pose, contact.point)[2] == pytest.approx(0.04, abs=5e-6)
+
+
+def test_fit_plane_recovers_a_known_plane():
+    rng = np.random.default_rng(0)
+    normal = np.array([0.1, -0.2, 1.0]) / np.linalg.norm([0.1, -0.2, 1.0])
+    points = rng.uniform(-0.05, 0.05, (20, 3))
+    points -= np.outer(points @ normal - 0.01, normal)  # onto n . p = 0.01
+    found, centroid, distances = fit_plane(points, outward=[0, 0, 1])
+    assert found == pytest.approx(normal, abs=1e-12)
+    assert centroid @ found == pytest.approx(0.01, abs=1e-12)
+    assert np.abs(distances).max() < 1e-12
+
+
+def test_probe_plane_on_a_tilted_box(sensor, calibration):
+    tilt = Rotation.from_euler("xy", [4, -7], degrees=True)
+    box = Box("box", size=(0.2, 0.2, 0.05), pose=make_pose(tilt))
+    corners = [(-0.05, -0.05), (0.05, -0.05), (-0.05, 0.05), (0.05, 0.05), (0.0, 0.0)]
+    poses = [make_pose(DOWN, [x, y, 0.08]) for x, y in corners]
+    finger = SimulatedFinger(sensor, [box], poses[0], rng=4)
+    plane = probe_plane(finger, poses, calibration=calibration)
+    true = tilt.apply([0.0, 0.0, 1.0])
+    assert np.degrees(np.arccos(plane.normal @ true)) < 0.05
+    assert plane.residual < 20e-6
+    top = transform_points(box.pose, [0.0, 0.0, 0.05])
+    assert np.abs((plane.contact_points - top) @ true).max() < 50e-6
+    assert len(plane.steps) == 5 and plane.steps[0].normal_force == pytest.approx(5.0)
+    assert set(plane.to_dict()) >= {"normal", "residual_m", "contact_points_m", "steps"}
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_five_probes_at_random_poses_meet_the_one_degree_target(seed):
+    trial = plane_probing_trial(n_probes=5, seed=seed)
+    assert np.degrees(trial.normal_error) < 0.2  # the target is 1 degree
+    assert np.abs(trial.point_errors).max() < 0.1e-3
+    assert trial.to_dict()["n_probes"] == 5
+
+
+def test_a_ball_is_not_planar(sensor, calibration):
+    ball = ProfileObject("big ball", profile=Sphere(0.05), top=0.1)
+    offsets = [(-0.04, -0.04), (0.04, -0.04), (-0.04, 0.04), (0.04, 0.04), (0.0, 0.0)]
+    poses = [make_pose(DOWN, [x, y, 0.11]) for x, y in offsets]
+    finger = SimulatedFinger(sensor, [ball], poses[0])
+    plane = probe_plane(finger, poses, calibration=calibration)
+    # a flat pad touches a convex object at its highest point under the pad: the apex for
+    # the centre probe, the pad's inner corner cell (centre 15 mm from the pad's centre, so
+    # (25, 25) mm off the apex) for the others, 50 - sqrt(50^2 - 2 * 25^2) = 14.6 mm lower;
+    # the RMS residual of heights (0, 0, 0, 0, 14.6) mm about their mean plane is 0.4 * 14.6
+    assert plane.residual == pytest.approx(5.86e-3, rel=0.05)
+    assert plane.normal @ [0.0, 0.0, 1.0] > 0.999
+
+
+def test_box_corner_frames_are_right_handed_and_point_into_the_box():
+    box = Box("box", size=(0.1, 0.08, 0.06), pose=make_pose(translation=[0.3, 0.1, 0.0]))
+    centre = transform_points(box.pose, [0.0, 0.0, 0.03])
+    for index in range(8):
+        frame = box_corner_frame(box, index)
+        assert np.linalg.det(frame[:3, :3]) == pytest.approx(1.0)
+        inward = centre - frame[:3, 3]
+        assert np.all(frame[:3, :3].T @ inward > 0)
+    with pytest.raises(ValueError, match="`index` must be an integer in"):
+        box_corner_frame(box, 8)
+
+
+def test_corner_within_the_one_millimetre_target():
+    trial = corner_probing_trial(seed=5, guess_error=4e-3)
+    assert trial.corner_error < 0.1e-3  # the target is 1 mm
+    assert np.degrees(trial.edge_errors).max() < 0.2
+    assert trial.estimate.residual < 20e-6
+    assert len(trial.estimate.steps) == 9
+    assert trial.to_dict()["corner_error_m"] == trial.corner_error
+
+
+def test_bad_commands_raise_and_leave_the_finger_safe(sensor, calibration):
+    box = Box("box", size=(0.1, 0.1, 0.04))
+    start = make_pose(DOWN, [0.0, 0.0, 0.06])
+    finger = SimulatedFinger(sensor, [box], start)
+    with pytest.raises(ValueError, match="`poses` must hold at least 3 poses, got 2"):
+        probe_plane(finger, [start, start])
+    line = [make_pose(DOWN, [x, 0.0, 0.06]) for x in (-0.02, 0.0, 0.02)]
+    with pytest.raises(ValueError, match="lie on one line"):
+        probe_plane(finger, line)
+    assert np.array_equal(finger.pose, start)  # validated before any motion
+    off = make_pose(DOWN, [0.3, 0.02, 0.06])  # beyond the box's edge
+    poses = [start, make_pose(DOWN, [0.02, 0.0, 0.06]), off]
+    with pytest.raises(ValueError, match=r"probe 3 at \(300.0, 20.0, 60.0\) mm: no object"):
+        probe_plane(finger, poses, calibration=calibration)
+    with pytest.raises(ValueError, match="`normal_force` must be <= the finger's limit"):
+        triangle = [start, poses[1], make_pose(DOWN, [0.0, 0.02, 0.06])]
+        probe_plane(finger, triangle, normal_force=1e3)
+    # retracted: the finger is back at an approach pose and presses normally again
+    assert np.array_equal(finger.pose, start)
+    finger.move_to(start)
+    assert finger.press(normal_force=2.0).normal_force == pytest.approx(2.0)
+    with pytest.raises(ValueError, match="`normal_force` must be > 0"):
+        probe_plane(finger, poses, normal_force=-1.0)
+    with pytest.raises(ValueError, match="piezo8x8"):
+        calibrate_pad(make_sensor("piezo8x8"))
+    with pytest.raises(ValueError, match="`n_probes` must be an integer >= 3, got 2"):
+        plane_probing_trial(n_probes=2)
+    with pytest.raises(ValueError, match="`sensor` must be one of"):
+        plane_probing_trial("nosuch")
+
+
+def test_corner_guess_off_the_box_raises():
+    box = Box("box", size=(0.12, 0.1, 0.07))
+    guess = box_corner_frame(box, 7)
+    guess[:3, 3] += [0.2, 0.0, 0.0]
+    finger = SimulatedFinger(make_sensor("resistive16"), [box], make_pose(translation=[0, 0, 0.2]))
+    with pytest.raises(ValueError, match="face 1 probe 1 at .* mm: no object within"):
+        locate_corner(finger, guess)
