@@ -15,6 +15,7 @@ from taxel.report._inverse import inverse_problem
 from taxel.report._mechanics import forward_problem
 from taxel.report._model import Experiment
 from taxel.report._passive import can_top, edge_at_two_forces, pen_tip, texture_table, washer
+from taxel.report._probing import slot_corner_normal
 
 __all__ = ["EXPERIMENTS", "DemoResult", "run_demo"]
 
@@ -27,6 +28,7 @@ EXPERIMENTS: tuple[ExperimentFunction, ...] = (
     can_top,
     washer,
     texture_table,
+    slot_corner_normal,
     forward_problem,
     inverse_problem,
     harmon_criteria,
