@@ -201,6 +201,7 @@ def extract(
     baseline: float | None = None,
     point_size: float = 2.5e-3,
     texture_sigma: float = 2.0,
+    defects: bool | None = None,
 ) -> TactileFeatures:
     """Every passive feature of one tactile image, located on the sensor and in the base frame.
 
@@ -210,7 +211,8 @@ def extract(
         A raw frame (8 or 16 bit), a calibrated reading or a pressure map [Pa] of any
         array geometry; larger values mean more pressure.
     sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
-        Taxel pitch [m], a (row, column) pair, or a sensor description.
+        Taxel pitch [m], a (row, column) pair, or a sensor description (a
+        `taxel.sensor.TactileSensor`: its cover depth then decides `defects`).
     pose : array_like, shape (4, 4), optional
         ``T_BS``, the sensor frame in the robot's base frame (see `taxel.frames`).
     depth : array_like, shape (rows, cols), optional
@@ -226,6 +228,10 @@ def extract(
         Compact contacts up to this size [m] are points (see `classify_contact`).
     texture_sigma : float, default 2.0
         Gaussian sigma before counting texture maxima [taxels].
+    defects : bool, optional
+        Remove bright sensor defects narrower than 3 taxels (scratches on an FTIR sensor's
+        glass, hot pixels) first; by default when the sensor's cover is 3 or more taxels
+        deep (see `prepare`).
 
     Returns
     -------
@@ -250,7 +256,12 @@ def extract(
     [0.0, 0.125, 0.0]
     """
     prepared = prepare(
-        image, sensor_or_pitch, calibrated=calibrated, smoothing=smoothing, baseline=baseline
+        image,
+        sensor_or_pitch,
+        calibrated=calibrated,
+        smoothing=smoothing,
+        baseline=baseline,
+        defects=defects,
     )
     point_size = check_positive("point_size", point_size)
     texture_sigma = check_range("texture_sigma", texture_sigma, 0.0, 20.0, low_inclusive=False)
