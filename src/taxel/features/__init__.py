@@ -27,7 +27,7 @@ Examples
 >>> from taxel.features import extract
 >>> y, x = np.mgrid[:32, :32]
 >>> pen = np.exp(-((x - 20) ** 2 + (y - 10) ** 2) / 4.0)  # a pen tip at row 10, col 20
->>> features = extract(pen, 1e-3)
+>>> features = extract(pen, 0.5e-3)  # a blob 1.7 mm wide at half its peak
 >>> features.contact_type, [round(v, 2) for v in features.contact.centroid_index]
 ('point', [10.0, 20.0])
 """

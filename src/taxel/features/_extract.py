@@ -11,10 +11,15 @@ import numpy as np
 
 from taxel._validation import as_finite_array, check_positive, check_range
 from taxel.features._contact import Contact, contact_regions
-from taxel.features._edges import edges_core
-from taxel.features._gaps import HoleReport, SlotReport, diameter_test, gaps_core
+from taxel.features._gaps import (
+    HoleReport,
+    SlotReport,
+    diameter_test,
+    gaps_core,
+    outline_taxels,
+)
 from taxel.features._image import prepare
-from taxel.features._shape import ContactShape, shape_core
+from taxel.features._shape import ContactShape, is_textured, shape_core
 from taxel.features._surface import ContactPlane, plane_core
 from taxel.features._texture import Texture, texture_core
 from taxel.frames import as_pose, transform_directions, transform_points
@@ -84,7 +89,8 @@ class TactileFeatures:
         Returns
         -------
         dict
-            Keys: contact, contact_type, contact_confidence, edge_score, corner_score,
+            Keys: contact, contact_type, contact_confidence, contact_rule, contact_size_m,
+            lobes, edge_score, corner_score,
             n_edges, line, circle, holes, slots, planarity, normal, texture, regions.
             Infinite or undefined numbers become None.
         """
@@ -109,6 +115,8 @@ class TactileFeatures:
             "contact_type": shape.contact_type,
             "contact_confidence": shape.confidence,
             "contact_rule": shape.rule,
+            "contact_size_m": shape.size_m,
+            "lobes": shape.lobes,
             "edge_score": shape.edge_score,
             "corner_score": shape.corner_score,
             "n_edges": shape.n_edges,
@@ -275,19 +283,21 @@ def extract(
                 f"got {depth_map.shape}"
             )
     contact = contact_regions(prepared)
-    edges = edges_core(prepared)
-    holes, slots, explained = gaps_core(prepared)
+    texture = texture_core(prepared, sigma=texture_sigma)
+    textured = is_textured(contact, texture.maxima_count)
+    holes, slots, explained = gaps_core(prepared, textured=textured)
     shape = shape_core(
         prepared,
         contact,
-        edges,
-        has_gaps=bool(holes or slots),
+        n_holes=len(holes),
+        n_slots=len(slots),
         explained=explained,
+        high_point_count=texture.maxima_count,
         point_size=point_size,
     )
-    hole_report = HoleReport(bool(holes), len(holes), tuple(holes), diameter_test(prepared, edges))
+    test = diameter_test(prepared, *outline_taxels(prepared))
+    hole_report = HoleReport(bool(holes), len(holes), tuple(holes), test)
     slot_report = SlotReport(bool(slots), len(slots), tuple(slots))
     plane = plane_core(prepared, depth_map)
-    texture = texture_core(prepared, sigma=texture_sigma)
     located = _locate(contact, shape, plane, depth_map, pose_matrix)
     return TactileFeatures(contact, located, shape, hole_report, slot_report, plane, texture)

@@ -27,6 +27,7 @@ import cv2
 import numpy as np
 
 from taxel._validation import check_finite, check_positive, check_range
+from taxel.features._sensor import cover_blur, cover_depth
 
 __all__ = ["Prepared", "pitch_pair", "prepare", "sensor_coordinates"]
 
@@ -83,6 +84,12 @@ class Prepared:
         Largest value of `smooth` [image units].
     defects_removed : bool
         Whether `image` was cleaned of defects narrower than 3 taxels (see the module notes).
+    blur : float
+        Half-maximum width of the cover's response to a point load [m] (0 without a
+        sensor description; see `taxel.features._sensor.cover_blur`).
+    residual : numpy.ndarray or None
+        ``x - mean(4 neighbours)`` of the input on its interior, shape (rows-2, cols-2):
+        the noise, wherever the signal is locally linear.
     """
 
     image: np.ndarray
@@ -100,6 +107,8 @@ class Prepared:
     calibrated: bool
     peak: float = 0.0
     defects_removed: bool = False
+    residual: np.ndarray | None = None
+    blur: float = 0.0
 
     @property
     def present(self) -> bool:
@@ -208,22 +217,33 @@ def _as_image(image: Any) -> np.ndarray:
     return image32
 
 
-def _noise_sigma(image: np.ndarray) -> float:
-    """Noise sigma of `image`, from the median absolute deviation of a discrete Laplacian.
+def laplacian_residual(image: np.ndarray) -> np.ndarray:
+    """``x - mean(4 neighbours)`` on the image's interior, shape (rows - 2, cols - 2)."""
+    centre = image[1:-1, 1:-1]
+    around = image[:-2, 1:-1] + image[2:, 1:-1] + image[1:-1, :-2] + image[1:-1, 2:]
+    return centre - np.float32(0.25) * around
+
+
+def noise_from_residual(residual: np.ndarray) -> float:
+    """Noise sigma from Laplacian residuals (any shape): 1.4826 MAD / sqrt(1.25)."""
+    values = np.abs(residual).ravel()
+    if values.size == 0:
+        return 0.0
+    middle = values.size // 2
+    return _MAD * float(np.partition(values, middle)[middle]) / _LAPLACE_GAIN
+
+
+def _noise_sigma(residual: np.ndarray) -> float:
+    """Noise sigma of an image, from the median absolute deviation of a discrete Laplacian.
 
     ``x - mean(4 neighbours)`` cancels any locally linear signal (the flanks of a contact)
     and leaves white noise of sigma n as sqrt(1.25) n; its median absolute value is robust
     to the few taxels where the signal curves. On images over 64 x 64 the median is taken
     over every other residual in each direction, which is as good and costs a quarter.
     """
-    centre = image[1:-1, 1:-1]
-    around = image[:-2, 1:-1] + image[2:, 1:-1] + image[1:-1, :-2] + image[1:-1, 2:]
-    residual = centre - np.float32(0.25) * around
     if residual.shape[0] > 64 and residual.shape[1] > 64:
         residual = residual[::2, ::2]
-    residual = np.abs(residual).ravel()
-    middle = residual.size // 2
-    return _MAD * float(np.partition(residual, middle)[middle]) / _LAPLACE_GAIN
+    return noise_from_residual(residual)
 
 
 def _smoothing_gain(smoothing: float) -> float:
@@ -234,17 +254,11 @@ def _smoothing_gain(smoothing: float) -> float:
     return min(1.0 / (2.0 * math.sqrt(math.pi) * smoothing), 1.0)
 
 
-def _cover_depth(sensor_or_pitch: Any) -> float | None:
-    """Depth of the sensing plane under the surface [m] when a sensor description gives it."""
-    depth = getattr(getattr(sensor_or_pitch, "cover", None), "depth", None)
-    return float(depth) if isinstance(depth, int | float) and depth > 0 else None
-
-
 def removes_defects(sensor_or_pitch: Any, defects: bool | None) -> bool:
     """Whether defects are removed: as asked, or (None) when the cover is >= 3 taxels deep."""
     if defects is not None:
         return bool(defects)
-    depth = _cover_depth(sensor_or_pitch)
+    depth = cover_depth(sensor_or_pitch)
     if depth is None:
         return False
     return depth >= _DEFECT_DEPTH * max(pitch_pair(sensor_or_pitch))
@@ -295,7 +309,8 @@ def prepare(
     values = _as_image(image)
     pitch = pitch_pair(sensor_or_pitch)
     smoothing = check_range("smoothing", smoothing, 0.0, 20.0)
-    raw_noise = _noise_sigma(values)
+    residual = laplacian_residual(values)
+    raw_noise = _noise_sigma(residual)
     cleaned = removes_defects(sensor_or_pitch, defects)
     if cleaned:
         values = cv2.morphologyEx(values, cv2.MORPH_OPEN, _DEFECT_KERNEL)
@@ -314,6 +329,7 @@ def prepare(
         "image": values, "smooth": smooth, "pitch": pitch, "baseline": level, "noise": noise,
         "contrast": contrast, "raw_noise": raw_noise, "low": low, "high": high,
         "calibrated": bool(calibrated), "peak": peak, "defects_removed": cleaned,
+        "residual": residual, "blur": cover_blur(sensor_or_pitch),
     }  # fmt: skip
     if contrast <= max(K_HIGH * noise, floor):
         empty = np.zeros(values.shape, np.uint8)

@@ -10,20 +10,29 @@ import cv2
 import numpy as np
 
 from taxel._validation import check_range
-from taxel.features._image import Prepared, prepare
+from taxel.features._image import Prepared, noise_from_residual, prepare
 
-__all__ = ["Texture", "texture_core", "texture_measures"]
+__all__ = ["Texture", "high_points", "texture_core", "texture_measures"]
 
 # The seed smooths before counting maxima, against camera noise and glass scratches; 2
 # taxels keeps bumps a few taxels apart (the rasp's teeth) and merges single-taxel specks.
 _TEXTURE_SIGMA = 2.0
-# A maximum counts when it stands 4 noise sigmas (of the texture-smoothed image) above both
-# the baseline and the lowest point within 3 sigma around it: noise alone gives none, and
-# the ripples of noise on a face are not high points of the object.
+# A high point of the object is a local maximum inside the contact that stands above every
+# point of the circle of radius 2 sigma around it by 4 noise sigmas (of the texture-smoothed
+# image, the noise measured inside the contact, where a camera's shot noise is larger than
+# on the background): noise alone gives none, and neither do the points along a ridge (an
+# edge or a rim pressed in), which the circle crosses twice at the ridge's own height. And a
+# high point is a peak, curved down in every direction: the cover spreads an asperity's load
+# evenly around it, so the weaker principal curvature is at least 1/4 of the stronger one;
+# a ridge has almost none along its crest (what bumps a ridge's crest is noise).
 _MAXIMUM_SIGMAS = 4.0
+_ISOTROPY = 0.25
+_RING_RADIUS = 2.0  # [sigma]
+_RING_POINTS = 32
 # Octave bands of spatial frequency, from the Nyquist limit down: [f/2, f], [f/4, f/2], ...
 _OCTAVES = 4
-_WINDOW_CACHE: dict[tuple[int, int], np.ndarray] = {}
+_SPECTRUM_CACHE: dict[tuple, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
+_THREE = np.ones((3, 3), np.uint8)
 
 
 @dataclass(frozen=True)
@@ -33,11 +42,13 @@ class Texture:
     Attributes
     ----------
     maxima_count : int
-        Local maxima of the smoothed image above the noise (the seed's first measure).
+        High points of the contact: local maxima of the smoothed image inside the contact
+        that rise clearly above their surroundings (the seed's first measure).
     mean_height : float
         Their mean height above the baseline [image units] (the seed's second measure).
     maxima_density_per_m2 : float
-        Maxima per unit contact area [1/m^2]; unlike the count, independent of image size.
+        High points per unit contact area [1/m^2]; unlike the count, independent of the
+        image size.
     dominant_wavelength_m : float or None
         Wavelength of the strongest spatial frequency of the image's ripple [m].
     spectral_centroid_per_m : float or None
@@ -60,66 +71,104 @@ class Texture:
     roughness: float
 
 
-def _hann(shape: tuple[int, int]) -> np.ndarray:
-    window = _WINDOW_CACHE.get(shape)
-    if window is None:
+def _spectrum_layout(
+    shape: tuple[int, int], pitch: tuple[float, float]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Hann window, spatial frequency [cycles/m] and octave band (0..4, 4: none) per bin."""
+    key = (shape, pitch)
+    layout = _SPECTRUM_CACHE.get(key)
+    if layout is None:
         window = np.outer(np.hanning(shape[0]), np.hanning(shape[1])).astype(np.float32)
-        _WINDOW_CACHE[shape] = window
-    return window
+        fy = np.fft.fftfreq(shape[0], pitch[0])[:, None]
+        fx = np.fft.fftfreq(shape[1], pitch[1])[None, :]
+        frequency = np.sqrt(fy**2 + fx**2).ravel()
+        nyquist = 0.5 / math.sqrt(pitch[0] * pitch[1])
+        band = np.full(frequency.shape, _OCTAVES, np.intp)
+        for octave in range(_OCTAVES - 1, -1, -1):
+            band[frequency > nyquist / 2 ** (octave + 1)] = octave
+        band[0] = _OCTAVES  # the mean
+        layout = (window, frequency, band)
+        _SPECTRUM_CACHE[key] = layout
+    return layout
+
+
+def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[int, float]:
+    """Number and mean height above the baseline of the contact's high points (internal)."""
+    if not prepared.present:
+        return 0, 0.0
+    smooth = cv2.GaussianBlur(prepared.image, (0, 0), sigma, borderType=cv2.BORDER_REFLECT)
+    reach = 2 * math.ceil(_RING_RADIUS * sigma) + 1
+    lowest = cv2.erode(smooth, np.ones((reach, reach), np.uint8))
+    raw_noise = prepared.raw_noise
+    if prepared.residual is not None:
+        inside = prepared.residual[prepared.mask[1:-1, 1:-1].view(bool)]
+        raw_noise = max(raw_noise, noise_from_residual(inside))
+    # white noise of sigma n leaves n / (2 sqrt(pi) sigma) after a Gaussian of sigma
+    noise = raw_noise / (2.0 * math.sqrt(math.pi) * sigma)
+    margin = np.float32(max(_MAXIMUM_SIGMAS * noise, 1e-9 * prepared.contrast, 1e-30))
+    # a plateau of equal values is one maximum, not many: one taxel per connected plateau
+    peaks = (smooth >= cv2.dilate(smooth, _THREE)) & (smooth > lowest + margin)
+    count, labels = cv2.connectedComponents(peaks.view(np.uint8) & prepared.mask)
+    if count <= 1:
+        return 0, 0.0
+    flat = labels.ravel()
+    where = np.flatnonzero(flat)
+    _, first = np.unique(flat[where], return_index=True)
+    rows, cols = np.divmod(where[first], smooth.shape[1])
+    rows_max, cols_max = smooth.shape[0] - 1, smooth.shape[1] - 1
+    angles = np.arange(_RING_POINTS) * (2 * math.pi / _RING_POINTS)
+    radius = _RING_RADIUS * sigma
+    ring_rows = np.clip(np.rint(rows[:, None] + radius * np.sin(angles)), 0, rows_max)
+    ring_cols = np.clip(np.rint(cols[:, None] + radius * np.cos(angles)), 0, cols_max)
+    around = smooth[ring_rows.astype(np.intp), ring_cols.astype(np.intp)].max(axis=1)
+    heights = smooth[rows, cols]
+    high = heights > around + margin
+    # principal curvatures by central differences 2 sigma wide (the scale of the smoothing)
+    step = max(int(round(sigma)), 1)
+    rows_up, rows_down = np.clip(rows - step, 0, None), np.clip(rows + step, None, rows_max)
+    cols_left, cols_right = np.clip(cols - step, 0, None), np.clip(cols + step, None, cols_max)
+    fxx = smooth[rows, cols_left] + smooth[rows, cols_right] - 2 * heights
+    fyy = smooth[rows_up, cols] + smooth[rows_down, cols] - 2 * heights
+    fxy = 0.25 * (
+        smooth[rows_down, cols_right] - smooth[rows_down, cols_left]
+        - smooth[rows_up, cols_right] + smooth[rows_up, cols_left]
+    )  # fmt: skip
+    half_trace, root = 0.5 * (fxx + fyy), np.sqrt(0.25 * (fxx - fyy) ** 2 + fxy**2)
+    strong, weak = half_trace - root, half_trace + root  # both < 0 on a peak
+    high &= weak <= _ISOTROPY * strong
+    if not high.any():
+        return 0, 0.0
+    return int(high.sum()), float(heights[high].mean()) - prepared.baseline
 
 
 def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Texture:
     """Texture measures of a prepared image (internal core of `texture_measures`)."""
-    image = prepared.image
-    smooth = cv2.GaussianBlur(image, (0, 0), sigma, borderType=cv2.BORDER_REFLECT)
-    dilated = cv2.dilate(smooth, np.ones((3, 3), np.uint8))
-    reach = 2 * math.ceil(3 * sigma) + 1
-    lowest = cv2.erode(smooth, cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (reach, reach)))
-    # white noise of sigma n leaves n / (2 sqrt(pi) sigma) after a Gaussian of sigma
-    noise = prepared.raw_noise / (2.0 * math.sqrt(math.pi) * sigma)
-    margin = _MAXIMUM_SIGMAS * max(noise, 1e-9 * abs(prepared.contrast), 1e-30)
-    peaks = (
-        (smooth >= dilated) & (smooth > prepared.baseline + margin) & (smooth > lowest + margin)
-    )
-    # a plateau of equal values is one maximum, not many: count connected plateaus
-    count, labels = cv2.connectedComponents(peaks.view(np.uint8), connectivity=8)
-    n_maxima = count - 1
-    if n_maxima:
-        heights = np.bincount(labels.ravel(), smooth.ravel(), minlength=count)[1:]
-        sizes = np.bincount(labels.ravel(), minlength=count)[1:]
-        mean_height = float(np.mean(heights / sizes)) - prepared.baseline
-    else:
-        mean_height = 0.0
-    contact = prepared.mask.view(bool)
-    area = float(np.count_nonzero(contact)) * prepared.taxel_area
-    density = n_maxima / area if area > 0 else 0.0
     if not prepared.present:
-        return Texture(n_maxima, mean_height, density, None, None, (0.0,) * _OCTAVES, 0.0)
-    values = prepared.smooth[contact]
-    above = float(values.mean()) - prepared.baseline
-    roughness = float(values.std()) / above if above > 0 else 0.0
+        return Texture(0, 0.0, 0.0, None, None, (0.0,) * _OCTAVES, 0.0)
+    n_maxima, mean_height = high_points(prepared, sigma=sigma)
+    area = float(cv2.countNonZero(prepared.mask)) * prepared.taxel_area
+    density = n_maxima / area
+    mean, deviation = cv2.meanStdDev(prepared.smooth, mask=prepared.mask)
+    above = float(mean[0, 0]) - prepared.baseline
+    roughness = float(deviation[0, 0]) / above if above > 0 else 0.0
     # ripple: the whole image minus its mean, Hann-windowed (the seed measures texture over
     # the entire image)
-    ripple = image - np.float32(image.mean())
-    power = np.abs(np.fft.rfft2(ripple * _hann(image.shape))) ** 2
-    rows, cols = image.shape
-    fy = np.fft.fftfreq(rows, prepared.pitch[0])[:, None]
-    fx = np.fft.rfftfreq(cols, prepared.pitch[1])[None, :]
-    frequency = np.sqrt(fy**2 + fx**2)
-    power[0, 0] = 0.0
+    image = prepared.image
+    window, frequency, band = _spectrum_layout(image.shape, prepared.pitch)
+    ripple = (image - np.float32(cv2.mean(image)[0])) * window
+    spectrum = cv2.dft(ripple, flags=cv2.DFT_COMPLEX_OUTPUT).reshape(-1, 2)
+    power = spectrum[:, 0] ** 2 + spectrum[:, 1] ** 2
+    power[0] = 0.0
     total = float(power.sum())
-    nyquist = 0.5 / prepared.mean_pitch
     if total <= 0:
         return Texture(n_maxima, mean_height, density, None, None, (0.0,) * _OCTAVES, roughness)
-    bands = []
-    for octave in range(_OCTAVES):
-        high, low = nyquist / 2**octave, nyquist / 2 ** (octave + 1)
-        inside = (frequency > low) & (frequency <= high) if octave else (frequency > low)
-        bands.append(float(power[inside].sum()) / total)
-    strongest = float(frequency.flat[int(np.argmax(power))])
-    centroid = float((power * frequency).sum()) / total
+    bands = np.bincount(band, power, minlength=_OCTAVES + 1)[:_OCTAVES] / total
+    strongest = float(frequency[int(np.argmax(power))])
+    centroid = float(power @ frequency) / total
     wavelength = 1.0 / strongest if strongest > 0 else math.inf
-    return Texture(n_maxima, mean_height, density, wavelength, centroid, tuple(bands), roughness)
+    return Texture(
+        n_maxima, mean_height, density, wavelength, centroid, tuple(bands.tolist()), roughness
+    )
 
 
 def texture_measures(
@@ -132,7 +181,7 @@ def texture_measures(
     image : array_like, shape (rows, cols)
         Raw frame, calibrated reading or pressure map.
     sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
-        Taxel pitch [m].
+        Taxel pitch [m], or a sensor description.
     sigma : float, default 2.0
         Gaussian smoothing before the maxima are counted [taxels].
 
@@ -143,10 +192,13 @@ def texture_measures(
     Notes
     -----
     Seed, section 2.1: after Gaussian smoothing, count the local maxima (the object's high
-    points) and average their height. Both depend on the image's size and gain; the
-    maxima density and the spectral measures do not. The spectrum is that of the image's
-    ripple (mean removed, Hann window); its band fractions are in octaves of spatial
-    frequency in cycles per metre.
+    points) and average their height. Here a maximum counts when it lies in the contact
+    and rises by 4 noise sigmas above every point of the circle of radius 2 sigma around
+    it (so that a ridge is not a high point), and is curved down in every direction. Count
+    and height depend on the image's size and gain; the maxima density and the spectral
+    measures do not. The spectrum is that of the image's ripple
+    (mean removed, Hann window); its band fractions are in octaves of spatial frequency in
+    cycles per metre.
 
     Examples
     --------
