@@ -248,11 +248,12 @@ def _accuracy(quick: bool, seed: int = SEED, details: bool = False) -> tuple[str
         "Centroid truth: the force-weighted centroid of the solved pressure on the array. "
         "3-D truth: that point (z = 0, on the cover) mapped through a random pose (uniform "
         "rotation, translation in a 1 m cube). Line angle truth: the placement angle; arc "
-        "radius truth: the rim radius. A hole is enclosed when a 4-connected gap of the "
+        "radius truth: the rim radius. (*) A hole is enclosed when a 4-connected gap of the "
         "solved contact, of at least one taxel's disk, mostly without material (+inf "
-        "heights), does not reach the array's border; a slot is present when half its "
-        "length lies on the array with contact along both walls. Errors are given as "
-        "median / 95th percentile / max.\n",
+        "heights), stays clear of the array's border by a wall as wide as the cover is deep "
+        "(2 taxels at least; closer, the blurred wall cannot be told from the array's edge); "
+        "a slot is present when half its length lies on the array with contact along both "
+        "walls. Errors are given as median / 95th percentile / max.\n",
     ]
     return "\n".join(header + parts), frames
 

@@ -27,7 +27,7 @@ from taxel.frames import make_pose, transform_points
 from taxel.mechanics import INDENTER_NAMES, make_indenter
 from taxel.sensor import TactileSensor, make_sensor
 
-VERSION = 1  # bump when the scenes or labels change: old cache files are then ignored
+VERSION = 2  # bump when the scenes or labels change: old cache files are then ignored
 CACHE = Path(__file__).resolve().parent / ".cache"
 POINT_SIZE = 2.5e-3  # [m], the default `point_size` of taxel.features.extract
 NOISE_LEVELS = (0.0, 0.05)  # added noise, fraction of the sensor's full scale
@@ -39,15 +39,15 @@ LABEL_RULES = {
     "edge": "line",
     "cylinder": "line (a cylinder's side is a line contact whatever its width)",
     "punch": "surface",
-    "washer": "surface; hole if its hole is enclosed by the true contact on the array",
+    "washer": "surface; hole if its hole is enclosed by the true contact on the array (*)",
     "can": "arc (the rim radius is the arc's radius)",
     "box-edge": "line",
     "box-corner": "point if the true contact's major axis <= the point size, else corner",
     "slot": "surface; slot if >= half the slot's length lies on the array",
-    "hole": "surface; hole if the hole is enclosed by the true contact on the array",
+    "hole": "surface; hole if the hole is enclosed by the true contact on the array (*)",
     "foam": "surface (texture)",
     "rasp": "surface (texture)",
-    "screen": "surface (texture); hole if one of its holes is enclosed by the true contact",
+    "screen": "surface (texture); hole if one of its holes is enclosed by the true contact (*)",
 }
 
 
@@ -209,16 +209,27 @@ def _major_axis(mask: np.ndarray, spacing: tuple[float, float]) -> float:
     return float(4.0 * math.sqrt(np.linalg.eigvalsh(covariance)[-1]))
 
 
-def _enclosed_missing(contact: np.ndarray, missing: np.ndarray, minimum: int) -> bool:
+def _enclosed_missing(contact: np.ndarray, missing: np.ndarray, minimum: int, margin: int) -> bool:
     """Whether some region of missing material (+inf heights) is enclosed by contact.
 
-    A gap counts when it is a 4-connected set of non-contact cells that does not reach the
-    grid's border, holds at least `minimum` cells, and is mostly missing material.
+    A gap counts when it is a 4-connected set of non-contact cells that stays `margin`
+    cells clear of the grid's border, holds at least `minimum` cells, and is mostly missing
+    material.
     """
     labels, count = ndimage.label(~contact)
     if count == 0:
         return False
-    border = np.unique(np.concatenate((labels[0], labels[-1], labels[:, 0], labels[:, -1])))
+    edge = max(margin, 1)
+    border = np.unique(
+        np.concatenate(
+            (
+                labels[:edge].ravel(),
+                labels[-edge:].ravel(),
+                labels[:, :edge].ravel(),
+                labels[:, -edge:].ravel(),
+            )
+        )
+    )
     sizes = np.bincount(labels.ravel(), minlength=count + 1)
     empty = np.bincount(labels.ravel(), missing.ravel(), minlength=count + 1)
     for label in range(1, count + 1):
@@ -291,10 +302,16 @@ def _labels(
     }.get(name, "surface")
     if name in ("sphere", "box-corner") and major <= point_size:
         kind = "point"
-    # a hole must be resolved: at least a disk of one taxel's radius
+    # a hole must be resolved: at least a disk of one taxel's radius, and seen all round,
+    # with a wall on the array at least as wide as the cover is deep (2 taxels at least):
+    # closer to the border the blurred wall cannot be told from the array's edge
     minimum = max(int(math.pi * (max(sensor.taxel_pitch) / min(spacing)) ** 2), 3)
+    wall = max(sensor.cover.depth, 2.0 * max(sensor.taxel_pitch))
+    margin = int(math.ceil(wall / min(spacing)))
     missing = ~np.isfinite(heights)
-    hole = name in ("washer", "hole", "screen") and _enclosed_missing(mask, missing, minimum)
+    hole = name in ("washer", "hole", "screen") and _enclosed_missing(
+        mask, missing, minimum, margin
+    )
     slot = name == "slot" and _slot_seen(parameters, position, angle, sensor, mask)
     return {
         "contact_type": kind,

@@ -9,9 +9,11 @@ half the level of the contact around it, and it is measured at that half level, 
 blurred step crosses the true wall, so radius and width do not shrink with the blur.
 
 Basins are found as the outer outlines of the non-contact regions at three levels of the
-smoothed image (the contact threshold, then 25 % and 50 % of the contrast), so that a hole
+smoothed image (50 % and 25 % of the contrast, then the contact threshold), so that a hole
 in a dome-shaped contact (a gently convex plate) is enclosed at some level even where its
-surroundings press less than the contact's peak.
+surroundings press less than the contact's peak. The highest level is tried first: a slot
+whose floor is not equally deep all along is one basin there, and the pieces it may break
+into at lower levels are then already explained.
 """
 
 from __future__ import annotations
@@ -64,6 +66,10 @@ _SHEET_EVENNESS = 0.5
 # At most this many basins are measured per level, largest first (a texture has hundreds of
 # tiny ones; the gaps an object's shape makes are among the largest).
 _MAX_BASINS = 24
+# A hole must be seen all round: a gap closer to the array's border than the cover is deep
+# (and than 2 taxels) cannot be told from a notch, since its wall on that side is blurred
+# into the array's edge.
+_BORDER_TAXELS = 2.0
 # Diameters sampled by the seed's hole test and their extent beyond the fitted radius.
 _DIAMETERS = 16
 _DIAMETER_REACH = 2.0
@@ -158,13 +164,16 @@ def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
     image = prepared.image.shape
     limit = 0.5 * image[0] * image[1]
     found = []
-    levels = [prepared.low] + [
+    levels = [
         prepared.baseline + f * prepared.contrast
-        for f in _LEVELS
+        for f in sorted(_LEVELS, reverse=True)
         if prepared.baseline + f * prepared.contrast > prepared.low
-    ]
-    for index, level in enumerate(levels):
-        inside = prepared.mask if index == 0 else (prepared.smooth >= level).view(np.uint8)
+    ] + [prepared.low]
+    for level in levels:
+        if level == prepared.low:
+            inside = prepared.mask
+        else:
+            inside = (prepared.smooth >= level).view(np.uint8)
         # two-level hierarchy: every region's outer outline is at the top, however nested
         contours, hierarchy = cv2.findContours(1 - inside, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_SIMPLE)
         sized = []
@@ -177,6 +186,18 @@ def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
         sized.sort(key=lambda item: -item[0])
         found += [(contour, level) for _, contour in sized[:_MAX_BASINS]]
     return found
+
+
+def _reaches_border(
+    region: np.ndarray, r0: int, r1: int, c0: int, c1: int, shape: tuple[int, int]
+) -> bool:
+    """Whether a window's region touches the array's border."""
+    return bool(
+        (r0 == 0 and region[0].any())
+        or (r1 == shape[0] and region[-1].any())
+        or (c0 == 0 and region[:, 0].any())
+        or (c1 == shape[1] and region[:, -1].any())
+    )
 
 
 def _measure(
@@ -205,8 +226,13 @@ def _measure(
     half = prepared.baseline + _DIP * (surround - prepared.baseline)
     if bottom > half:
         return None  # a dimple of the pressure, not a gap in the contact
-    gap = (cv2.dilate(own, _GROW) > 0) & (window < half)
-    region = gap.view(np.uint8)
+    region = ((cv2.dilate(own, _GROW) > 0) & (window < half)).view(np.uint8)
+    if _reaches_border(region, r0, r1, c0, c1, shape) and not _reaches_border(
+        own, r0, r1, c0, c1, shape
+    ):
+        # the face itself falls below the half level toward the array's edge (a pad
+        # presses less at its rim): measure the gap where it is enclosed instead
+        region = own & (window < half).view(np.uint8)
     moments = cv2.moments(region, binaryImage=True)
     area = moments["m00"]
     where = (slice(r0, r1), slice(c0, c1))
@@ -228,11 +254,11 @@ def _measure(
     )
     gap_area = area * row_pitch * col_pitch
     inradius = float(cv2.distanceTransform(region, cv2.DIST_L2, 3).max())
-    border = r0 == 0 and region[0].any()
-    border = border or (r1 == rows and region[-1].any())
-    border = border or (c0 == 0 and region[:, 0].any())
-    border = border or (c1 == cols and region[:, -1].any())
-    if not border:
+    border = _reaches_border(region, r0, r1, c0, c1, shape)
+    edge = max(_BORDER_TAXELS, prepared.cover_depth / pitch)
+    left, top, width, height = cv2.boundingRect(region)
+    clearance = min(c0 + left, r0 + top, cols - c0 - left - width, rows - r0 - top - height)
+    if not border and clearance >= edge:
         round_enough = math.sqrt(minor / major) >= _HOLE_AXIS_RATIO
         filled = area / (math.pi * (inradius + 0.5) ** 2) <= _HOLE_FILL
         if round_enough and filled and inradius >= 1.0:
@@ -282,7 +308,7 @@ def gaps_core(
         return holes, slots, explained
     for contour, level in _basins(prepared):
         moments = cv2.moments(contour)
-        if moments["m00"] > 0:  # a basin already explained (found at a lower level) is done
+        if moments["m00"] > 0:  # a basin already explained (at a higher level) is done
             col, row = moments["m10"] / moments["m00"], moments["m01"] / moments["m00"]
             if explained[int(round(row)), int(round(col))]:
                 continue

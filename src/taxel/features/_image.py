@@ -84,6 +84,8 @@ class Prepared:
         Largest value of `smooth` [image units].
     defects_removed : bool
         Whether `image` was cleaned of defects narrower than 3 taxels (see the module notes).
+    cover_depth : float
+        Depth of the sensing plane under the surface [m] (0 without a sensor description).
     blur : float
         Half-maximum width of the cover's response to a point load [m] (0 without a
         sensor description; see `taxel.features._sensor.cover_blur`).
@@ -109,6 +111,7 @@ class Prepared:
     defects_removed: bool = False
     residual: np.ndarray | None = None
     blur: float = 0.0
+    cover_depth: float = 0.0
 
     @property
     def present(self) -> bool:
@@ -330,6 +333,7 @@ def prepare(
         "contrast": contrast, "raw_noise": raw_noise, "low": low, "high": high,
         "calibrated": bool(calibrated), "peak": peak, "defects_removed": cleaned,
         "residual": residual, "blur": cover_blur(sensor_or_pitch),
+        "cover_depth": cover_depth(sensor_or_pitch) or 0.0,
     }  # fmt: skip
     if contrast <= max(K_HIGH * noise, floor):
         empty = np.zeros(values.shape, np.uint8)

@@ -11,7 +11,7 @@ surface   a texture (foam, rasp, screen) or a     3 or more regions of >= 5 % of
           multi-point grip: many separate high    or >= 3 high points in the contact, or
           points or a perforated face             >= 2 holes
 surface   a face with a hole or a slot            a hole or a slot in the contact
-line      a straight edge pressed in (cylinder    a band (length >= 2 widths) whose centre
+line      a straight edge pressed in (cylinder    a band (length >= 1.5 widths) whose centre
           side, box edge): a long narrow band     line is straight
 arc       a curved edge (drink-can rim)           a band whose centre line is a circle arc
                                                   bowing >= 2 taxels over its length
@@ -19,8 +19,8 @@ point     a tip, or a contact too small for the   one compact region (axes withi
           array to resolve its shape              inside the array) whose size <= the
                                                   point size, max(`point_size`, 2 pitches)
 corner    a vertex (box corner): the contact      a compact region larger than the point
-          spreads along the three edges that      size whose outline has three lobes (3rd
-          leave it, a rounded triangle            harmonic of its radius >= 0.08)
+          spreads along the three edges that      size and 8 taxels whose outline has three
+          leave it, a rounded triangle            lobes (3rd harmonic of radius >= 0.08)
 line      a face whose straight edge crosses      the only free outline is straight
           the array (half-plane)
 corner    a face with a vertex (wedge)            a free outline of two straight arms
@@ -82,24 +82,34 @@ _MANY_REGIONS = 3
 # touching asperities: a texture.
 _MANY_HIGH_POINTS = 3
 _MANY_HOLES = 2
-# Band: length (area / thickness) >= 2 thicknesses. A round body (sphere, punch, tip)
-# makes a round contact (area / thickness^2 = pi / 4), a vertex a rounded triangle (~1.3),
-# an ellipse of axes 2:1 1.6; only an edge makes a contact twice as long as wide.
-_BAND = 2.0
+# Band: length (area / thickness) >= 1.5 thicknesses. A round body (sphere, punch, tip)
+# makes a round contact (area / thickness^2 = pi / 4 ~ 0.8) and a vertex a rounded
+# triangle (~1); only a body with an edge, a line of lowest points, makes a contact half
+# again as long as it is wide (a cylinder on its side: its length over its contact width).
+_BAND = 1.5
 # Compact: equivalent-ellipse axes within 2:1.
 _COMPACT_RATIO = 0.5
 _POINT_SIZE = 2.5e-3  # [m]
 # ... and never under 2 taxel pitches: the array cannot resolve a shape smaller than that.
-# The size is measured on the image at half the contact's peak, which shows a contact wider
-# than it is by the cover's blur (the half-maximum width of its response to a point load,
-# from the sensor's mechanics when a sensor is given) and by half a pitch on average (its
-# edge falls part-way into the next taxel); the limit adds both.
+# The size is measured on the image at half the contact's peak. Where the image is a
+# faithful copy of the pressure, that contour lies on the contact's edge (inside it for a
+# dome), and the limit only adds half a pitch (the edge falls part-way into the next
+# taxel). Where the sensor saturates, the image is clipped and the contour lies where the
+# blurred pressure is half the saturation level, outside the contact by up to the cover's
+# blur (the half-maximum width of its response to a point load, from the sensor's own
+# mechanics when a sensor is given): the limit then adds the blur too. A saturated image
+# is flat-topped: its top 10 % covers at least a third of its half-maximum area (a
+# Gaussian's covers 15 %, a blurred dome's ~20-25 %).
 _POINT_PITCHES = 2.0
+_FLAT_TOP = 1.0 / 3.0
 # An arc must bow by at least 2 taxels over its chord, or it is a line at this resolution.
 _MIN_SAGITTA = 2.0
 # Three lobes: a rounded triangle blurred by the cover keeps about 1/5 of a sharp
-# triangle's 3rd harmonic (0.42); a disk or an ellipse has none beyond noise (< 0.03).
+# triangle's 3rd harmonic (0.42); a disk or an ellipse has none beyond noise (< 0.06). The
+# pixel grid alone gives outlines up to ~0.1 when they span fewer than 8 taxels, so lobes
+# are looked for only on contacts at least that large.
 _LOBES = 0.08
+_LOBES_TAXELS = 8.0
 # Corner: two straight arms meeting at an interior angle <= 150 deg (a straight line is 180).
 _CORNER_ANGLE = math.radians(150.0)
 
@@ -116,7 +126,7 @@ class ContactShape:
         How clearly the deciding measure passed its threshold, in [0, 1].
     edge_score : float
         Evidence in [0, 1] that the contact is an edge (a long narrow band) rather than a
-        gently curved surface: a ramp of the elongation from 1 (0) to 3 (1).
+        gently curved surface: a ramp of the elongation from 1 (0) to 2 (1).
     corner_score : float
         Evidence in [0, 1] that the contact is a vertex rather than an edge or a surface.
     line : LineFit or None
@@ -172,21 +182,28 @@ def _main_region(prepared: Prepared, contact: Contact) -> np.ndarray:
     return (prepared.labels == int(np.argmax(counts))).view(np.uint8)
 
 
-def _half_region(prepared: Prepared, main: np.ndarray) -> tuple[np.ndarray, float]:
-    """The main region above half its peak, and its major axis [taxels].
+def _half_region(prepared: Prepared, main: np.ndarray) -> tuple[np.ndarray, float, bool]:
+    """The main region above half its peak, its major axis [taxels], and if it is flat-topped.
 
     The region is taken on the unsmoothed image, so that the smoothing does not widen it.
     """
     top = cv2.minMaxLoc(prepared.smooth, main)[1]
-    half = prepared.baseline + 0.5 * (top - prepared.baseline)
-    region = (prepared.image >= half).view(np.uint8) & main
+    span = top - prepared.baseline
+    region = (prepared.image >= prepared.baseline + 0.5 * span).view(np.uint8) & main
     moments = cv2.moments(region, binaryImage=True)
     count = moments["m00"]
     if count == 0:
-        return region, 0.0
+        return region, 0.0, False
+    half_area = cv2.countNonZero(
+        (prepared.smooth >= prepared.baseline + 0.5 * span).view(np.uint8) & main
+    )
+    top_area = cv2.countNonZero(
+        (prepared.smooth >= prepared.baseline + 0.9 * span).view(np.uint8) & main
+    )
     var_y, var_x = moments["mu02"] / count + 1 / 12, moments["mu20"] / count + 1 / 12
     root = math.hypot((var_x - var_y) / 2, moments["mu11"] / count)
-    return region, 4.0 * math.sqrt((var_x + var_y) / 2 + root)
+    flat = top_area >= _FLAT_TOP * max(half_area, 1)
+    return region, 4.0 * math.sqrt((var_x + var_y) / 2 + root), flat
 
 
 def _band_fits(prepared: Prepared, main: np.ndarray) -> tuple[LineFit, CircleFit, float]:
@@ -247,13 +264,13 @@ def shape_core(
     thickness = 2.0 * float(cv2.minMaxLoc(depth)[1]) + 1.0  # [taxels]; +1: centres, not edges
     area = float(cv2.countNonZero(main))
     elongation = area / thickness**2
-    edge_score = ramp(elongation, 1.0, 3.0)
+    edge_score = ramp(elongation, 1.0, 2.0)
     moments = cv2.moments(main, binaryImage=True)
     weighted = cv2.moments(np.maximum(prepared.smooth - np.float32(prepared.baseline), 0) * main)
     spread = (moments["mu20"] + moments["mu02"]) / max(moments["m00"], 1e-30)
     concentration = (weighted["mu20"] + weighted["mu02"]) / max(weighted["m00"], 1e-30)
     concentration = concentration / spread if spread > 0 else 0.0
-    half, size = _half_region(prepared, main)
+    half, size, flat = _half_region(prepared, main)
     centre = (moments["m10"] / moments["m00"], moments["m01"] / moments["m00"])
     half_outline, _ = cv2.findContours(half, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_NONE)
     three = lobes(max(half_outline, key=len), centre, 3) if half_outline else 0.0
@@ -288,14 +305,15 @@ def shape_core(
         bow = sagitta(arc.radius_m, length)
         if bow >= _MIN_SAGITTA and arc.rms_m < fit.rms_m:
             return result("arc", ramp(bow, 1.0, 4.0), 0.0, "curved band")
-        return result("line", ramp(elongation, 1.5, 3.0), 0.0, "straight band")
+        return result("line", ramp(elongation, 1.0, 2.0), 0.0, "straight band")
     compact = region.minor_axis_m >= _COMPACT_RATIO * region.major_axis_m
     if compact and not region.touches_border:
-        limit = max(point_size, _POINT_PITCHES * pitch) + prepared.blur + 0.5 * pitch
+        limit = max(point_size, _POINT_PITCHES * pitch) + 0.5 * pitch
+        limit += prepared.blur if flat else 0.0
         if size * pitch <= limit:
             return result("point", ramp(limit / (size * pitch), 1.0, 1.3), 0.0, "small contact")
         corner = ramp(three, 0.5 * _LOBES, 1.5 * _LOBES)
-        if three >= _LOBES:
+        if three >= _LOBES and size >= _LOBES_TAXELS:
             return result("corner", corner, corner, "three-lobed compact contact (vertex)")
         return result("surface", 1.0 - corner, corner, "compact face")
     chains = free_chains(contours, shape, explained)
