@@ -6,6 +6,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+import cv2
 import numpy as np
 
 from taxel.features._image import Prepared, prepare
@@ -101,6 +102,52 @@ def _axes(
     return major, minor, angle
 
 
+def _one_region(prepared: Prepared) -> Contact:
+    """`contact_regions` for one region, from image moments (the usual case, ~5x faster)."""
+    mask = prepared.mask
+    binary = cv2.moments(mask, binaryImage=True)
+    count = binary["m00"]
+    weight = (prepared.smooth - np.float32(prepared.baseline)) * mask
+    weighted = cv2.moments(weight)
+    if weighted["m00"] > 0:
+        row, col = weighted["m01"] / weighted["m00"], weighted["m10"] / weighted["m00"]
+    else:
+        row, col = binary["m01"] / count, binary["m10"] / count
+    mean_r, mean_c = binary["m01"] / count, binary["m10"] / count
+    sums = [
+        np.array([value])
+        for value in (
+            count,
+            binary["m01"],
+            binary["m10"],
+            binary["mu02"] + count * mean_r**2,
+            binary["mu20"] + count * mean_c**2,
+            binary["mu11"] + count * mean_r * mean_c,
+        )
+    ]
+    major, minor, angle = _axes(*sums, prepared.pitch)
+    image = prepared.image
+    above = (image >= np.float32(prepared.low)).view(np.uint8) & mask
+    raw_count = cv2.countNonZero(above) or int(count)
+    peak = cv2.minMaxLoc(image, mask)[1]
+    border = bool(mask[0].any() or mask[-1].any() or mask[:, 0].any() or mask[:, -1].any())
+    force = None
+    if prepared.calibrated:
+        force = float(cv2.sumElems(image * mask)[0]) * prepared.taxel_area
+    rows, cols = mask.shape
+    row_pitch, col_pitch = prepared.pitch
+    centroid_m = ((col - (cols - 1) / 2) * col_pitch, (row - (rows - 1) / 2) * row_pitch)
+    area = raw_count * prepared.taxel_area
+    region = ContactRegion(
+        (row, col), centroid_m, int(raw_count), area, force, float(major[0]),
+        float(minor[0]), float(angle[0]), float(peak), border,
+    )  # fmt: skip
+    return Contact(
+        True, (row, col), centroid_m, area, force, region.major_axis_m, region.minor_axis_m,
+        region.orientation_rad, (region,),
+    )  # fmt: skip
+
+
 def contact_regions(prepared: Prepared) -> Contact:
     """Measure the contact regions of a prepared image (the core of `find_contact`).
 
@@ -116,6 +163,8 @@ def contact_regions(prepared: Prepared) -> Contact:
     n = prepared.n_regions
     if n == 0:
         return Contact(False, None, None, 0.0, None, 0.0, 0.0, 0.0, ())
+    if n == 1:
+        return _one_region(prepared)
     labels = prepared.labels
     rows, cols = np.nonzero(labels)
     lab = labels[rows, cols]

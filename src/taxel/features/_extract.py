@@ -7,6 +7,7 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Any
 
+import cv2
 import numpy as np
 
 from taxel._validation import as_finite_array, check_positive, check_range
@@ -286,6 +287,9 @@ def extract(
     texture = texture_core(prepared, sigma=texture_sigma)
     textured = is_textured(contact, texture.maxima_count)
     holes, slots, explained = gaps_core(prepared, textured=textured)
+    contours: list[np.ndarray] = []
+    if prepared.present:
+        contours = list(cv2.findContours(prepared.mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)[0])
     shape = shape_core(
         prepared,
         contact,
@@ -294,10 +298,11 @@ def extract(
         explained=explained,
         high_point_count=texture.maxima_count,
         point_size=point_size,
+        contours=contours,
     )
-    test = diameter_test(prepared, *outline_taxels(prepared))
+    test = diameter_test(prepared, *outline_taxels(prepared, contours))
     hole_report = HoleReport(bool(holes), len(holes), tuple(holes), test)
     slot_report = SlotReport(bool(slots), len(slots), tuple(slots))
-    plane = plane_core(prepared, depth_map)
+    plane = plane_core(prepared, depth_map, contours=contours)
     located = _locate(contact, shape, plane, depth_map, pose_matrix)
     return TactileFeatures(contact, located, shape, hole_report, slot_report, plane, texture)

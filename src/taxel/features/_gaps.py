@@ -356,9 +356,12 @@ def diameter_test(prepared: Prepared, cols: np.ndarray, rows: np.ndarray) -> boo
     return bool(np.any((before == 2) & (after == 2) & ~touched[:, middle]))
 
 
-def outline_taxels(prepared: Prepared) -> tuple[np.ndarray, np.ndarray]:
+def outline_taxels(
+    prepared: Prepared, contours: list[np.ndarray] | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """(cols, rows) of the taxels on the outlines of the contact mask (internal)."""
-    contours, _ = cv2.findContours(prepared.mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)
+    if contours is None:
+        contours, _ = cv2.findContours(prepared.mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)
     if not contours:
         empty = np.zeros(0, np.intp)
         return empty, empty

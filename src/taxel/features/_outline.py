@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from taxel.features._fitting import CircleFit, circle_fit_algebraic, line_fit_core
+from taxel.features._fitting import CircleFit, circle_fit_algebraic, dot, line_fit_core
 
 __all__ = [
     "circle_spread",
@@ -163,4 +163,4 @@ def lobes(contour: np.ndarray, centre: tuple[float, float], order: int) -> float
     if total <= 0:
         return 0.0
     angle = order * np.arctan2(y, x)
-    return math.hypot(float(radius @ np.cos(angle)), float(radius @ np.sin(angle))) / total
+    return math.hypot(dot(radius, np.cos(angle)), dot(radius, np.sin(angle))) / total

@@ -47,13 +47,7 @@ import numpy as np
 
 from taxel._validation import check_positive
 from taxel.features._contact import Contact, contact_regions
-from taxel.features._fitting import (
-    CircleFit,
-    LineFit,
-    circle_fit_algebraic,
-    line_fit_core,
-    line_fit_weighted,
-)
+from taxel.features._fitting import CircleFit, LineFit, fit_line_and_circle
 from taxel.features._gaps import gaps_core
 from taxel.features._image import Prepared, prepare
 from taxel.features._outline import (
@@ -209,13 +203,11 @@ def _half_region(prepared: Prepared, main: np.ndarray) -> tuple[np.ndarray, floa
 def _band_fits(prepared: Prepared, main: np.ndarray) -> tuple[LineFit, CircleFit, float]:
     """Weighted centre line and circle of a band (taxel units), and its length [taxels]."""
     rows, cols = np.nonzero(main)
-    weight = (prepared.smooth[rows, cols] - prepared.baseline).astype(float)
-    weight = np.maximum(weight, 0.0) + 1e-12
+    weight = np.maximum(prepared.smooth[rows, cols] - np.float32(prepared.baseline), 1e-12)
     x, y = cols.astype(float), rows.astype(float)
-    line = line_fit_weighted(x, y, weight)
-    circle = circle_fit_algebraic(x, y, weight)
+    line, circle = fit_line_and_circle(x, y, weight.astype(float))
     along = math.cos(line.angle_rad) * x + math.sin(line.angle_rad) * y
-    return line, circle, float(np.ptp(along)) + 1.0
+    return line, circle, float(along.max() - along.min()) + 1.0
 
 
 def _to_metres_line(fit: LineFit, prepared: Prepared) -> LineFit:
@@ -239,6 +231,60 @@ def _to_metres_circle(fit: CircleFit, prepared: Prepared) -> CircleFit:
     return CircleFit(centre, fit.radius_m * pitch, fit.rms_m * pitch, fit.n_points)
 
 
+def _region_measures(
+    prepared: Prepared, contact: Contact
+) -> tuple[np.ndarray, float, float, float]:
+    """Main region mask, its thickness and area [taxels], and its concentration."""
+    main = _main_region(prepared, contact)
+    left, top, width, height = cv2.boundingRect(main)
+    box = main[max(top - 1, 0) : top + height + 1, max(left - 1, 0) : left + width + 1]
+    inscribed = cv2.minMaxLoc(cv2.distanceTransform(box, cv2.DIST_L2, 3))[1]
+    thickness = 2.0 * float(inscribed) + 1.0  # [taxels]; +1: taxel centres, not edges
+    binary = cv2.moments(main, binaryImage=True)
+    weight = (prepared.smooth - np.float32(prepared.baseline)) * main
+    weighted = cv2.moments(weight)
+    spread = (binary["mu20"] + binary["mu02"]) / max(binary["m00"], 1e-30)
+    concentration = (weighted["mu20"] + weighted["mu02"]) / max(weighted["m00"], 1e-30)
+    concentration = concentration / spread if spread > 0 else 0.0
+    return main, thickness, float(binary["m00"]), float(concentration)
+
+
+def _three_lobes(prepared: Prepared, half: np.ndarray) -> float:
+    """3rd harmonic of the outline of the main region above half its peak."""
+    outlines, _ = cv2.findContours(half, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_NONE)
+    if not outlines:
+        return 0.0
+    moments = cv2.moments(half, binaryImage=True)
+    centre = (moments["m10"] / moments["m00"], moments["m01"] / moments["m00"])
+    return lobes(max(outlines, key=len), centre, 3)
+
+
+def _free_outline(
+    contours: list[np.ndarray], shape: tuple[int, int], explained: np.ndarray
+) -> tuple[str, float, float, str] | None:
+    """Type from the free outline pieces (see the module notes), or None without any."""
+    chains = free_chains(contours, shape, explained)
+    if not chains:
+        return None
+    straight = True
+    best_corner = 0.0
+    for x, y in chains:
+        single, extent = line_spread(x, y)
+        allowed = tolerance(extent)
+        if single <= allowed:
+            continue  # straight: no vertex, no curve
+        straight = False
+        arms = two_arms(x, y)
+        round_spread, _ = circle_spread(x, y)
+        corner = corner_score(min(single, round_spread), arms)
+        if arms[0] <= allowed and arms[1] <= _CORNER_ANGLE:
+            return "corner", max(corner, 0.5), corner, "free outline with a vertex"
+        best_corner = max(best_corner, corner)
+    if straight:
+        return "line", 0.8, best_corner, "face with a straight free outline"
+    return "surface", 0.7, best_corner, "face with a curved free outline"
+
+
 def shape_core(
     prepared: Prepared,
     contact: Contact,
@@ -248,92 +294,72 @@ def shape_core(
     explained: np.ndarray,
     high_point_count: int,
     point_size: float = _POINT_SIZE,
+    contours: list[np.ndarray] | None = None,
 ) -> ContactShape:
-    """Classify a prepared image (internal core of `classify_contact`)."""
+    """Classify a prepared image (internal core of `classify_contact`).
+
+    `contours`: the contact's outlines (`cv2.RETR_LIST`, every taxel), if already found.
+    Only the measures a rule needs are computed; the others are reported as 0.
+    """
     pitch = prepared.mean_pitch
     if not contact.present:
         return ContactShape(
             "none", 1.0, 0.0, 0.0, None, None, 0, 0.0, 0.0, 0.0, 0.0, 0.0, "no contact"
         )
-    shape = prepared.image.shape
-    contours, _ = cv2.findContours(prepared.mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)
+    if contours is None:
+        contours, _ = cv2.findContours(prepared.mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)
     outline = [c for c in contours if c.shape[0] >= 4]
-    points = np.concatenate(outline)[:, 0, :].astype(float) if outline else np.zeros((0, 2))
-    main = _main_region(prepared, contact)
-    depth = cv2.distanceTransform(main, cv2.DIST_L2, 3)
-    thickness = 2.0 * float(cv2.minMaxLoc(depth)[1]) + 1.0  # [taxels]; +1: centres, not edges
-    area = float(cv2.countNonZero(main))
+    main, thickness, area, concentration = _region_measures(prepared, contact)
     elongation = area / thickness**2
     edge_score = ramp(elongation, 1.0, 2.0)
-    moments = cv2.moments(main, binaryImage=True)
-    weighted = cv2.moments(np.maximum(prepared.smooth - np.float32(prepared.baseline), 0) * main)
-    spread = (moments["mu20"] + moments["mu02"]) / max(moments["m00"], 1e-30)
-    concentration = (weighted["mu20"] + weighted["mu02"]) / max(weighted["m00"], 1e-30)
-    concentration = concentration / spread if spread > 0 else 0.0
-    half, size, flat = _half_region(prepared, main)
-    centre = (moments["m10"] / moments["m00"], moments["m01"] / moments["m00"])
-    half_outline, _ = cv2.findContours(half, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_NONE)
-    three = lobes(max(half_outline, key=len), centre, 3) if half_outline else 0.0
-    region = contact.regions[0]
-
+    size = three = 0.0
     line = circle = None
-    if points.shape[0] >= 3:
-        line = _to_metres_line(line_fit_core(points[:, 0], points[:, 1]), prepared)
-        circle = _to_metres_circle(circle_fit_algebraic(points[:, 0], points[:, 1]), prepared)
 
     def result(kind: str, confidence: float, corner: float, rule: str) -> ContactShape:
+        fitted_line, fitted_circle = line, circle
+        if fitted_line is None and outline:  # the outline's own line and circle
+            points = np.concatenate(outline).reshape(-1, 2).astype(float)
+            fitted_line, fitted_circle = fit_line_and_circle(points[:, 0], points[:, 1])
+        if fitted_line is not None:
+            fitted_line = _to_metres_line(fitted_line, prepared)
+            fitted_circle = _to_metres_circle(fitted_circle, prepared)
         return ContactShape(
-            kind, float(confidence), edge_score, float(corner), line, circle, len(outline),
-            thickness * pitch, float(elongation), float(concentration), size * pitch,
-            float(three), rule,
+            kind, float(confidence), edge_score, float(corner), fitted_line, fitted_circle,
+            len(outline), thickness * pitch, float(elongation), concentration,
+            size * pitch, float(three), rule,
         )  # fmt: skip
 
-    total = sum(r.area_taxels for r in contact.regions)
-    major_regions = sum(r.area_taxels >= _MINOR_REGION * total for r in contact.regions)
-    if major_regions >= _MANY_REGIONS:
+    if is_textured(contact, high_point_count):
+        if high_point_count >= _MANY_HIGH_POINTS:
+            return result("surface", 1.0, 0.0, "many high points (texture)")
         return result("surface", 1.0, 0.0, "several contacts (texture)")
-    if high_point_count >= _MANY_HIGH_POINTS:
-        return result("surface", 1.0, 0.0, "many high points (texture)")
     if n_holes >= _MANY_HOLES:
         return result("surface", 1.0, 0.0, "several holes (perforated face)")
     if n_holes or n_slots:
         return result("surface", 1.0, 0.0, "face with a hole or a slot")
     if elongation >= _BAND:
-        fit, arc, length = _band_fits(prepared, main)
-        line = _to_metres_line(fit, prepared)
-        circle = _to_metres_circle(arc, prepared)
-        bow = sagitta(arc.radius_m, length)
-        if bow >= _MIN_SAGITTA and arc.rms_m < fit.rms_m:
+        line, circle, length = _band_fits(prepared, main)
+        bow = sagitta(circle.radius_m, length)
+        if bow >= _MIN_SAGITTA and circle.rms_m < line.rms_m:
             return result("arc", ramp(bow, 1.0, 4.0), 0.0, "curved band")
         return result("line", ramp(elongation, 1.0, 2.0), 0.0, "straight band")
+    region = contact.regions[0]
     compact = region.minor_axis_m >= _COMPACT_RATIO * region.major_axis_m
     if compact and not region.touches_border:
+        half, size, flat = _half_region(prepared, main)
         limit = max(point_size, _POINT_PITCHES * pitch) + 0.5 * pitch
         limit += prepared.blur if flat else 0.0
         if size * pitch <= limit:
             return result("point", ramp(limit / (size * pitch), 1.0, 1.3), 0.0, "small contact")
+        three = _three_lobes(prepared, half) if size >= _LOBES_TAXELS else 0.0
         corner = ramp(three, 0.5 * _LOBES, 1.5 * _LOBES)
-        if three >= _LOBES and size >= _LOBES_TAXELS:
+        if three >= _LOBES:
             return result("corner", corner, corner, "three-lobed compact contact (vertex)")
         return result("surface", 1.0 - corner, corner, "compact face")
-    chains = free_chains(contours, shape, explained)
-    if not chains:
+    decided = _free_outline(contours, prepared.image.shape, explained)
+    if decided is None:
         return result("surface", 1.0, 0.0, "face with a closed or no free outline")
-    straight = True
-    best_corner = 0.0
-    for x, y in chains:
-        single, extent = line_spread(x, y)
-        allowed = tolerance(extent)
-        arms = two_arms(x, y)
-        round_spread, _ = circle_spread(x, y)
-        corner = corner_score(min(single, round_spread), arms)
-        if arms[0] <= allowed and arms[1] <= _CORNER_ANGLE and single > allowed:
-            return result("corner", max(corner, 0.5), corner, "free outline with a vertex")
-        best_corner = max(best_corner, corner)
-        straight &= single <= allowed
-    if straight:
-        return result("line", 0.8, best_corner, "face with a straight free outline")
-    return result("surface", 0.7, best_corner, "face with a curved free outline")
+    return result(*decided)
 
 
 def classify_contact(
