@@ -7,16 +7,17 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Any
 
-import cv2
 import numpy as np
 
 from taxel._validation import as_finite_array, check_positive, check_range
 from taxel.features._contact import Contact, contact_regions
+from taxel.features._fitting import fit_line_and_circle
 from taxel.features._gaps import (
     HoleReport,
     SlotReport,
     diameter_test,
     gaps_core,
+    outline_contours,
     outline_taxels,
 )
 from taxel.features._image import prepare
@@ -287,9 +288,11 @@ def extract(
     texture = texture_core(prepared, sigma=texture_sigma)
     textured = is_textured(contact, texture.maxima_count)
     holes, slots, explained = gaps_core(prepared, textured=textured)
-    contours: list[np.ndarray] = []
-    if prepared.present:
-        contours = list(cv2.findContours(prepared.mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)[0])
+    contours = list(outline_contours(prepared))
+    cols, rows = outline_taxels(prepared, contours)
+    outline_fit = None
+    if cols.size >= 3:  # one line and circle through the outline, for shape and hole test
+        outline_fit = fit_line_and_circle(cols.astype(float), rows.astype(float))
     shape = shape_core(
         prepared,
         contact,
@@ -299,8 +302,9 @@ def extract(
         high_point_count=texture.maxima_count,
         point_size=point_size,
         contours=contours,
+        outline_fit=outline_fit,
     )
-    test = diameter_test(prepared, *outline_taxels(prepared, contours))
+    test = diameter_test(prepared, cols, rows, outline_fit[1] if outline_fit else None)
     hole_report = HoleReport(bool(holes), len(holes), tuple(holes), test)
     slot_report = SlotReport(bool(slots), len(slots), tuple(slots))
     plane = plane_core(prepared, depth_map, contours=contours)

@@ -25,7 +25,7 @@ from typing import Any
 import cv2
 import numpy as np
 
-from taxel.features._fitting import circle_fit_algebraic
+from taxel.features._fitting import CircleFit, circle_fit_algebraic
 from taxel.features._image import Prepared, prepare
 
 __all__ = [
@@ -37,6 +37,8 @@ __all__ = [
     "detect_slots",
     "diameter_test",
     "gaps_core",
+    "outline_contours",
+    "outline_taxels",
 ]
 
 # Levels, besides the contact threshold, at which basins are searched [fraction of contrast].
@@ -160,9 +162,15 @@ class SlotReport:
 
 
 def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
-    """Outer outlines of the non-contact regions at each level, with the level."""
-    image = prepared.image.shape
-    limit = 0.5 * image[0] * image[1]
+    """Outer outlines of the non-contact regions at each level that may hold a gap.
+
+    Cheap tests on the outline alone come first: a basin must hold at least a taxel's
+    disk and at most half the array (more is the free space around a contact), and one
+    that reaches the array's border can only be a slot running off it at its ends: long
+    (>= 2.5 widths) and meeting the border over no more than 2.5 widths.
+    """
+    rows, cols = prepared.image.shape
+    limit = 0.5 * rows * cols
     found = []
     levels = [
         prepared.baseline + f * prepared.contrast
@@ -175,14 +183,27 @@ def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
         else:
             inside = (prepared.smooth >= level).view(np.uint8)
         # two-level hierarchy: every region's outer outline is at the top, however nested
-        contours, hierarchy = cv2.findContours(1 - inside, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_SIMPLE)
+        contours, hierarchy = cv2.findContours(1 - inside, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
         sized = []
         for contour, links in zip(contours, hierarchy[0] if contours else (), strict=True):
             if links[3] >= 0 or contour.shape[0] < 3:
                 continue
-            area = cv2.contourArea(contour)
-            if area >= 1.0 and area <= limit:
-                sized.append((area, contour))
+            moments = cv2.moments(contour)
+            # the outline runs through the outer taxels' centres: add half a taxel all round
+            area = moments["m00"] + 0.5 * contour.shape[0]
+            if area < _MIN_GAP_AREA or area > limit:
+                continue
+            x, y = contour[:, 0, 0], contour[:, 0, 1]
+            run = int(np.count_nonzero((x == 0) | (y == 0) | (x == cols - 1) | (y == rows - 1)))
+            if run:
+                count = max(moments["m00"], 1e-9)
+                var_x, var_y = moments["mu20"] / count, moments["mu02"] / count
+                spread = math.hypot((var_x - var_y) / 2, moments["mu11"] / count)
+                length = math.sqrt(12.0 * ((var_x + var_y) / 2 + spread)) + 1.0
+                width = area / length
+                if length < _SLOT_ELONGATION * width or run > _SLOT_BORDER_WIDTHS * width + 2:
+                    continue
+            sized.append((area, contour))
         sized.sort(key=lambda item: -item[0])
         found += [(contour, level) for _, contour in sized[:_MAX_BASINS]]
     return found
@@ -327,18 +348,24 @@ def gaps_core(
     return holes, slots, explained
 
 
-def diameter_test(prepared: Prepared, cols: np.ndarray, rows: np.ndarray) -> bool:
+def diameter_test(
+    prepared: Prepared,
+    cols: np.ndarray,
+    rows: np.ndarray,
+    circle: CircleFit | None = None,
+) -> bool:
     """The seed's hole test on a prepared image and its outline taxels (internal core).
 
-    Fits a circle to the outline and walks 16 diameters of it across 2 radii each way
-    (the fit to both rims of a washer lies between them): a hole is present when some
-    diameter crosses the contact's outline 4 times, twice on each side of the fitted
-    centre (object rim, hole rim), with the centre off contact. Crossings are counted on
-    the contact mask, which a sampled line cannot slip through at a diagonal.
+    Fits a circle to the outline (or takes `circle`, fitted to it in taxel units) and
+    walks 16 diameters of it across 2 radii each way (the fit to both rims of a washer
+    lies between them): a hole is present when some diameter crosses the contact's
+    outline 4 times, twice on each side of the fitted centre (object rim, hole rim), with
+    the centre off contact. Crossings are counted on the contact mask, which a sampled
+    line cannot slip through at a diagonal.
     """
     if rows.size < 8:
         return False
-    fit = circle_fit_algebraic(cols.astype(float), rows.astype(float))
+    fit = circle or circle_fit_algebraic(cols.astype(float), rows.astype(float))
     shape = prepared.mask.shape
     if not math.isfinite(fit.radius_m) or fit.radius_m < 2 or fit.radius_m > 2 * max(shape):
         return False
@@ -354,6 +381,15 @@ def diameter_test(prepared: Prepared, cols: np.ndarray, rows: np.ndarray) -> boo
     before = np.count_nonzero(np.diff(touched[:, : middle + 1], axis=1), axis=1)
     after = np.count_nonzero(np.diff(touched[:, middle:], axis=1), axis=1)
     return bool(np.any((before == 2) & (after == 2) & ~touched[:, middle]))
+
+
+def outline_contours(prepared: Prepared) -> tuple[np.ndarray, ...]:
+    """The contact's outlines (outer boundaries and hole walls, every taxel; internal)."""
+    if not prepared.present:
+        return ()
+    if prepared.outlines is not None:
+        return tuple(prepared.outlines)
+    return tuple(cv2.findContours(prepared.mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)[0])
 
 
 def outline_taxels(

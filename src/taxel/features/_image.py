@@ -75,8 +75,8 @@ class Prepared:
         Hysteresis thresholds on `smooth` [image units].
     mask : numpy.ndarray (uint8)
         1 on contact taxels.
-    labels : numpy.ndarray (int32)
-        Connected contact regions numbered 1..n (0 elsewhere).
+    labels : numpy.ndarray (int32, or uint8 with one region)
+        Connected contact regions numbered 1..n (0 elsewhere); with one region, `mask`.
     n_regions : int
     calibrated : bool
         Whether `image` holds pressure [Pa].
@@ -94,6 +94,9 @@ class Prepared:
         (see `residual_step`): the noise, wherever the signal is locally linear.
     residual_step : int
         Row step of `residual` (2 on images over 64 x 64, else 1).
+    outlines : tuple of numpy.ndarray or None
+        Outlines of the contact (outer boundaries and hole walls, every taxel, as
+        `cv2.findContours` gives them), when segmentation found them; else None.
     """
 
     image: np.ndarray
@@ -113,6 +116,7 @@ class Prepared:
     defects_removed: bool = False
     residual: np.ndarray | None = None
     residual_step: int = 1
+    outlines: tuple[np.ndarray, ...] | None = None
     blur: float = 0.0
     cover_depth: float = 0.0
 
@@ -333,7 +337,8 @@ def prepare(
     if cleaned:
         values = cv2.morphologyEx(values, cv2.MORPH_OPEN, _DEFECT_KERNEL)
     if smoothing > 0:
-        smooth = cv2.GaussianBlur(values, (0, 0), smoothing, borderType=cv2.BORDER_REFLECT)
+        reach = 2 * math.ceil(3 * smoothing) + 1  # 3 sigma each way: 99.7 % of the weight
+        smooth = cv2.GaussianBlur(values, (reach, reach), smoothing, borderType=cv2.BORDER_REFLECT)
     else:
         smooth = values
     noise = raw_noise * _smoothing_gain(smoothing)
@@ -354,9 +359,15 @@ def prepare(
         empty = np.zeros(values.shape, np.uint8)
         return Prepared(mask=empty, labels=empty.astype(np.int32), n_regions=0, **common)
     candidates = (smooth >= low).view(np.uint8)
+    # outer boundaries and hole walls in a two-level hierarchy: one outer boundary is one
+    # region (an island inside a hole is put at the top level too), the usual case, and
+    # it is seeded by the peak itself; its outlines serve every later feature
+    outlines, hierarchy = cv2.findContours(candidates, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
+    if int(np.count_nonzero(hierarchy[0][:, 3] < 0)) == 1:
+        return Prepared(
+            mask=candidates, labels=candidates, n_regions=1, outlines=outlines, **common
+        )
     count, labels = cv2.connectedComponents(candidates, connectivity=8, ltype=cv2.CV_32S)
-    if count == 2:  # one candidate region, the usual case: seeded by the peak itself
-        return Prepared(mask=candidates, labels=labels, n_regions=1, **common)
     seeded = np.bincount(labels[smooth >= high], minlength=count) > 0
     seeded[0] = False
     keep = np.cumsum(seeded).astype(np.int32) * seeded

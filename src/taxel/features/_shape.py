@@ -295,11 +295,13 @@ def shape_core(
     high_point_count: int,
     point_size: float = _POINT_SIZE,
     contours: list[np.ndarray] | None = None,
+    outline_fit: tuple[LineFit, CircleFit] | None = None,
 ) -> ContactShape:
     """Classify a prepared image (internal core of `classify_contact`).
 
-    `contours`: the contact's outlines (`cv2.RETR_LIST`, every taxel), if already found.
-    Only the measures a rule needs are computed; the others are reported as 0.
+    `contours`: the contact's outlines (every taxel), if already found; `outline_fit`:
+    the line and circle fitted to them in taxel units, if already fitted. Only the
+    measures a rule needs are computed; the others are reported as 0.
     """
     pitch = prepared.mean_pitch
     if not contact.present:
@@ -317,7 +319,9 @@ def shape_core(
 
     def result(kind: str, confidence: float, corner: float, rule: str) -> ContactShape:
         fitted_line, fitted_circle = line, circle
-        if fitted_line is None and outline:  # the outline's own line and circle
+        if fitted_line is None and outline_fit is not None:
+            fitted_line, fitted_circle = outline_fit
+        elif fitted_line is None and outline:  # the outline's own line and circle
             points = np.concatenate(outline).reshape(-1, 2).astype(float)
             fitted_line, fitted_circle = fit_line_and_circle(points[:, 0], points[:, 1])
         if fitted_line is not None:
