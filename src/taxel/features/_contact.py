@@ -11,7 +11,7 @@ import numpy as np
 
 from taxel.features._image import Prepared, prepare
 
-__all__ = ["Contact", "ContactRegion", "contact_regions", "find_contact"]
+__all__ = ["Contact", "ContactRegion", "contact_regions", "find_contact", "region_moments"]
 
 
 @dataclass(frozen=True)
@@ -102,13 +102,25 @@ def _axes(
     return major, minor, angle
 
 
+def region_moments(prepared: Prepared, mask: np.ndarray) -> tuple[dict, dict]:
+    """Image moments of a region and of its signal above the baseline (internal).
+
+    With one region, kept in ``prepared.memo`` for the other features.
+    """
+    if prepared.n_regions == 1 and "moments" in prepared.memo:
+        return prepared.memo["moments"]
+    binary = cv2.moments(mask, binaryImage=True)
+    weighted = cv2.moments((prepared.smooth - np.float32(prepared.baseline)) * mask)
+    if prepared.n_regions == 1:
+        prepared.memo["moments"] = (binary, weighted)
+    return binary, weighted
+
+
 def _one_region(prepared: Prepared) -> Contact:
     """`contact_regions` for one region, from image moments (the usual case, ~5x faster)."""
     mask = prepared.mask
-    binary = cv2.moments(mask, binaryImage=True)
+    binary, weighted = region_moments(prepared, mask)
     count = binary["m00"]
-    weight = (prepared.smooth - np.float32(prepared.baseline)) * mask
-    weighted = cv2.moments(weight)
     if weighted["m00"] > 0:
         row, col = weighted["m01"] / weighted["m00"], weighted["m10"] / weighted["m00"]
     else:

@@ -4,8 +4,9 @@ Where an object has no material (a hole, a slot), the surface pressure is zero; 
 cover the pressure at the sensing depth dips there, to a fraction of the surrounding level
 that falls as the gap widens compared with the depth (to ~0.2-0.3 for a gap 3-4 depths
 across). A shallow dimple of the pressure, by contrast, comes from a face that is only
-less pressed there. So a *gap* is a dark basin enclosed by contact whose bottom lies below
-half the level of the contact around it, and it is measured at that half level, where a
+less pressed there. So a *gap* is a dark basin enclosed by contact, most of it pressing
+clearly (at the contact's seed level, see `prepare`), whose bottom lies below half the
+level of the contact around it, and it is measured at that half level, where a
 blurred step crosses the true wall, so radius and width do not shrink with the blur.
 
 Basins are found as the outer outlines of the non-contact regions at three levels of the
@@ -45,6 +46,10 @@ __all__ = [
 _LEVELS = (0.25, 0.5)
 # A basin holds a gap when its bottom lies below this fraction of the surrounding level.
 _DIP = 0.5
+# A gap lies in a face: at least half the ring 2-6 taxels around it presses as clearly as a
+# contact's seed (see `prepare`). Not so in the noisy fringe of a weak contact, where noise
+# alone can enclose a dark patch.
+_FACE = 0.5
 # Smallest gap considered: a disk of one taxel's radius at the half level [taxels^2].
 _MIN_GAP_AREA = math.pi
 # A hole is round: its equivalent-ellipse axes within 2:1, and its area at most 1.9 times the
@@ -75,10 +80,7 @@ _BORDER_TAXELS = 2.0
 # Diameters sampled by the seed's hole test and their extent beyond the fitted radius.
 _DIAMETERS = 16
 _DIAMETER_REACH = 2.0
-_GROW = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (7, 7))
-_NEAR = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (5, 5))
-# the surrounding level is read up to 6 taxels out, past the blurred transition
-_WALL = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (13, 13))
+_GROW = np.ones((7, 7), np.uint8)
 
 
 @dataclass(frozen=True)
@@ -234,9 +236,17 @@ def _measure(
     own = np.zeros(window.shape, np.uint8)
     cv2.drawContours(own, [contour], -1, 1, thickness=-1, offset=(-c0, -r0))
     bottom = cv2.minMaxLoc(window, own)[0]
-    wall = (cv2.dilate(own, _WALL) > cv2.dilate(own, _NEAR)) & (window >= level)
+    # distance of every window taxel from the basin: the wall is read 2-6 taxels out,
+    # past the blurred transition, and the gap grown up to 3 taxels to the half level
+    away = cv2.distanceTransform(1 - own, cv2.DIST_L2, 3)
+    ring = (away > 2.0) & (away <= 6.0)
+    wall = ring & (window >= level)
     if not wall.any():
         return None
+    if cv2.countNonZero((ring & (window >= prepared.high)).view(np.uint8)) < _FACE * (
+        cv2.countNonZero(ring.view(np.uint8))
+    ):
+        return None  # no face around it (a noisy fringe, the valleys of a texture)
     values = window[wall]
     tenth, ninetieth = (values.size - 1) // 10, (values.size - 1) * 9 // 10
     ordered = np.partition(values, (tenth, ninetieth))
@@ -247,7 +257,7 @@ def _measure(
     half = prepared.baseline + _DIP * (surround - prepared.baseline)
     if bottom > half:
         return None  # a dimple of the pressure, not a gap in the contact
-    region = ((cv2.dilate(own, _GROW) > 0) & (window < half)).view(np.uint8)
+    region = ((away <= 3.0) & (window < half)).view(np.uint8)
     if _reaches_border(region, r0, r1, c0, c1, shape) and not _reaches_border(
         own, r0, r1, c0, c1, shape
     ):
@@ -370,7 +380,8 @@ def diameter_test(
     if not math.isfinite(fit.radius_m) or fit.radius_m < 2 or fit.radius_m > 2 * max(shape):
         return False
     centre_c, centre_r = fit.center_m
-    steps = np.arange(-_DIAMETER_REACH * fit.radius_m, _DIAMETER_REACH * fit.radius_m, 0.5)
+    # one taxel per step: the contact's walls are at least 2 taxels thick after smoothing
+    steps = np.arange(-_DIAMETER_REACH * fit.radius_m, _DIAMETER_REACH * fit.radius_m, 1.0)
     angles = np.arange(_DIAMETERS) * (math.pi / _DIAMETERS)
     cols_at = np.rint(centre_c + np.cos(angles)[:, None] * steps).astype(int)
     rows_at = np.rint(centre_r + np.sin(angles)[:, None] * steps).astype(int)

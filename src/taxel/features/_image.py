@@ -20,7 +20,7 @@ pressure feature is narrower than ~3.5 taxels, and bright structures under 3 tax
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import cv2
@@ -97,6 +97,8 @@ class Prepared:
     outlines : tuple of numpy.ndarray or None
         Outlines of the contact (outer boundaries and hole walls, every taxel, as
         `cv2.findContours` gives them), when segmentation found them; else None.
+    memo : dict
+        Intermediates one feature computes and another reuses (image moments).
     """
 
     image: np.ndarray
@@ -117,6 +119,7 @@ class Prepared:
     residual: np.ndarray | None = None
     residual_step: int = 1
     outlines: tuple[np.ndarray, ...] | None = None
+    memo: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
     blur: float = 0.0
     cover_depth: float = 0.0
 

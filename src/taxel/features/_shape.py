@@ -24,7 +24,8 @@ corner    a vertex (box corner): the contact      a compact region larger than t
 line      a face whose straight edge crosses      the only free outline is straight
           the array (half-plane)
 corner    a face with a vertex (wedge)            a free outline of two straight arms
-                                                  meeting at <= 150 deg
+                                                  meeting at <= 150 deg that fit it
+                                                  better than one circle
 surface   a flat or gently curved face: punch,    everything else (closed outlines, curved
           large sphere, plate, washer             free outlines)
 ========  ======================================  ========================================
@@ -46,7 +47,7 @@ import cv2
 import numpy as np
 
 from taxel._validation import check_positive
-from taxel.features._contact import Contact, contact_regions
+from taxel.features._contact import Contact, contact_regions, region_moments
 from taxel.features._fitting import CircleFit, LineFit, fit_line_and_circle
 from taxel.features._gaps import gaps_core
 from taxel.features._image import Prepared, prepare
@@ -240,9 +241,7 @@ def _region_measures(
     box = main[max(top - 1, 0) : top + height + 1, max(left - 1, 0) : left + width + 1]
     inscribed = cv2.minMaxLoc(cv2.distanceTransform(box, cv2.DIST_L2, 3))[1]
     thickness = 2.0 * float(inscribed) + 1.0  # [taxels]; +1: taxel centres, not edges
-    binary = cv2.moments(main, binaryImage=True)
-    weight = (prepared.smooth - np.float32(prepared.baseline)) * main
-    weighted = cv2.moments(weight)
+    binary, weighted = region_moments(prepared, main)
     spread = (binary["mu20"] + binary["mu02"]) / max(binary["m00"], 1e-30)
     concentration = (weighted["mu20"] + weighted["mu02"]) / max(weighted["m00"], 1e-30)
     concentration = concentration / spread if spread > 0 else 0.0
@@ -277,7 +276,9 @@ def _free_outline(
         arms = two_arms(x, y)
         round_spread, _ = circle_spread(x, y)
         corner = corner_score(min(single, round_spread), arms)
-        if arms[0] <= allowed and arms[1] <= _CORNER_ANGLE:
+        # a vertex: two straight arms, which fit better than one circle (a curved edge,
+        # such as a hole cut by the array's corner, is fitted as well by a circle)
+        if arms[0] <= allowed and arms[1] <= _CORNER_ANGLE and arms[0] < round_spread:
             return "corner", max(corner, 0.5), corner, "free outline with a vertex"
         best_corner = max(best_corner, corner)
     if straight:
