@@ -14,7 +14,8 @@ surface   a face with a hole or a slot            a hole or a slot in the contac
 line      a straight edge pressed in (cylinder    a band (length >= 1.5 widths) whose centre
           side, box edge): a long narrow band     line is straight
 arc       a curved edge (drink-can rim)           a band whose centre line is a circle arc
-                                                  bowing >= 2 taxels over its length
+                                                  bowing >= 2 taxels over its length, and
+                                                  thinner than half its radius
 point     a tip, or a contact too small for the   one compact region (axes within 2:1,
           array to resolve its shape              inside the array) whose size <= the
                                                   point size, max(`point_size`, 2 pitches)
@@ -99,6 +100,12 @@ _POINT_PITCHES = 2.0
 _FLAT_TOP = 1.0 / 3.0
 # An arc must bow by at least 2 taxels over its chord, or it is a line at this resolution.
 _MIN_SAGITTA = 2.0
+# A curved edge (a rim) presses a band much narrower than its radius of curvature: the
+# width of an edge's contact grows like sqrt(edge radius x indentation), a few millimetres,
+# while a rim's radius is the object's size (0.09-0.21 for drink-can rims on the
+# simulator). A curved band as thick as half its radius is part of a face: a washer's ring
+# or a face cut by a hole.
+_RIM_WIDTH = 0.5
 # Three lobes: a rounded triangle blurred by the cover keeps about 1/5 of a sharp
 # triangle's 3rd harmonic (0.42); a disk or an ellipse has none beyond noise (< 0.06). The
 # pixel grid alone gives outlines up to ~0.1 when they span fewer than 8 taxels, so lobes
@@ -346,6 +353,8 @@ def shape_core(
         line, circle, length = _band_fits(prepared, main)
         bow = sagitta(circle.radius_m, length)
         if bow >= _MIN_SAGITTA and circle.rms_m < line.rms_m:
+            if thickness > _RIM_WIDTH * circle.radius_m:
+                return result("surface", 0.7, 0.0, "wide curved strip (part of a face)")
             return result("arc", ramp(bow, 1.0, 4.0), 0.0, "curved band")
         return result("line", ramp(elongation, 1.0, 2.0), 0.0, "straight band")
     region = contact.regions[0]
