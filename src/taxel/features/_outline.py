@@ -120,21 +120,27 @@ def corner_score(best_single: float, arms: tuple[float, float]) -> float:
 
 
 def free_chains(
-    contours: list[np.ndarray], shape: tuple[int, int], explained: np.ndarray
+    contours: list[np.ndarray],
+    shape: tuple[int, int],
+    explained: np.ndarray,
+    margin: int = 1,
 ) -> list[tuple[np.ndarray, np.ndarray]]:
     """Open pieces of the contacts' outlines, as (cols, rows) taxel arrays.
 
-    A *free* outline taxel is neither on the array's border (the object continues there)
-    nor on the wall of a hole or slot. Closed outlines (a contact wholly inside the array)
-    return nothing: they outline a finite face or tip, not an edge crossing the array.
+    A *free* outline taxel is neither within `margin` taxels of the array's border (the
+    object continues there, and a pad presses less toward its own free edge, which draws
+    an outline along the border that no object made) nor on the wall of a hole or slot.
+    Closed outlines (a contact wholly inside the array) return nothing: they outline a
+    finite face or tip, not an edge crossing the array.
     """
     rows, cols = shape
+    low, high_x, high_y = margin, cols - 1 - margin, rows - 1 - margin
     chains = []
     for contour in contours:
         if contour.shape[0] < _MIN_CHAIN:
             continue
         x, y = contour[:, 0, 0], contour[:, 0, 1]
-        free = (x > 0) & (x < cols - 1) & (y > 0) & (y < rows - 1) & (explained[y, x] == 0)
+        free = (x >= low) & (x <= high_x) & (y >= low) & (y <= high_y) & (explained[y, x] == 0)
         if free.all() or not free.any():
             continue
         start = int(np.argmin(free))  # begin on a taxel that is not free

@@ -87,15 +87,16 @@ _BAND = 1.5
 _COMPACT_RATIO = 0.5
 _POINT_SIZE = 2.5e-3  # [m]
 # ... and never under 2 taxel pitches: the array cannot resolve a shape smaller than that.
-# The size is measured on the image at half the contact's peak. Where the image is a
-# faithful copy of the pressure, that contour lies on the contact's edge (inside it for a
-# dome), and the limit only adds half a pitch (the edge falls part-way into the next
-# taxel). Where the sensor saturates, the image is clipped and the contour lies where the
-# blurred pressure is half the saturation level, outside the contact by up to the cover's
-# blur (the half-maximum width of its response to a point load, from the sensor's own
-# mechanics when a sensor is given): the limit then adds the blur too. A saturated image
-# is flat-topped: its top 10 % covers at least a third of its half-maximum area (a
-# Gaussian's covers 15 %, a blurred dome's ~20-25 %).
+# The size is measured on the image at half the contact's peak, and the image is the
+# pressure blurred by the cover (the blur being the half-maximum width of its response to
+# a point load, from the sensor's own mechanics when a sensor is given, else 0). Where the
+# image is a faithful copy of the pressure, widths add in quadrature under blurring (as the
+# variances of a convolution do): the limit is sqrt(size^2 + blur^2). Where the sensor
+# saturates, the image is clipped and its half-peak contour lies where the blurred pressure
+# is half the saturation level, outside the contact by up to the blur: the limit is
+# size + blur. A saturated image is flat-topped: its top 10 % covers at least a third of
+# its half-maximum area (a Gaussian's covers 15 %, a blurred dome's ~20-25 %). Both add
+# half a pitch: the contact's edge falls part-way into the next taxel.
 _POINT_PITCHES = 2.0
 _FLAT_TOP = 1.0 / 3.0
 # An arc must bow by at least 2 taxels over its chord, or it is a line at this resolution.
@@ -266,10 +267,15 @@ def _three_lobes(prepared: Prepared, half: np.ndarray) -> float:
 
 
 def _free_outline(
-    contours: list[np.ndarray], shape: tuple[int, int], explained: np.ndarray
+    contours: list[np.ndarray], prepared: Prepared, explained: np.ndarray
 ) -> tuple[str, float, float, str] | None:
-    """Type from the free outline pieces (see the module notes), or None without any."""
-    chains = free_chains(contours, shape, explained)
+    """Type from the free outline pieces (see the module notes), or None without any.
+
+    Outline taxels closer to the array's border than the cover is deep (and than one
+    taxel) are not free: the cover's own rim presses less there.
+    """
+    margin = max(1, math.ceil(prepared.cover_depth / prepared.mean_pitch))
+    chains = free_chains(contours, prepared.image.shape, explained, margin)
     if not chains:
         return None
     straight = True
@@ -361,8 +367,11 @@ def shape_core(
     compact = region.minor_axis_m >= _COMPACT_RATIO * region.major_axis_m
     if compact and not region.touches_border:
         half, size, flat = _half_region(prepared, main)
-        limit = max(point_size, _POINT_PITCHES * pitch) + 0.5 * pitch
-        limit += prepared.blur if flat else 0.0
+        smallest = max(point_size, _POINT_PITCHES * pitch)
+        if flat:
+            limit = smallest + prepared.blur + 0.5 * pitch
+        else:
+            limit = math.hypot(smallest, prepared.blur) + 0.5 * pitch
         if size * pitch <= limit:
             return result("point", ramp(limit / (size * pitch), 1.0, 1.3), 0.0, "small contact")
         three = _three_lobes(prepared, half) if size >= _LOBES_TAXELS else 0.0
@@ -370,7 +379,7 @@ def shape_core(
         if three >= _LOBES:
             return result("corner", corner, corner, "three-lobed compact contact (vertex)")
         return result("surface", 1.0 - corner, corner, "compact face")
-    decided = _free_outline(contours, prepared.image.shape, explained)
+    decided = _free_outline(contours, prepared, explained)
     if decided is None:
         return result("surface", 1.0, 0.0, "face with a closed or no free outline")
     return result(*decided)
