@@ -113,6 +113,9 @@ _RIM_WIDTH = 0.5
 # are looked for only on contacts at least that large.
 _LOBES = 0.08
 _LOBES_TAXELS = 8.0
+# A free outline is called straight only over 8 taxels or more: on a shorter piece the
+# taxel grid hides a bow (the same resolution as for lobes).
+_STRAIGHT_TAXELS = 8.0
 # Corner: two straight arms meeting at an interior angle <= 150 deg (a straight line is 180).
 _CORNER_ANGLE = math.radians(150.0)
 
@@ -188,11 +191,12 @@ def _main_region(prepared: Prepared, contact: Contact) -> np.ndarray:
 def _half_region(prepared: Prepared, main: np.ndarray) -> tuple[np.ndarray, float, bool]:
     """The main region above half its peak, its major axis [taxels], and if it is flat-topped.
 
-    The region is taken on the unsmoothed image, so that the smoothing does not widen it.
+    The region is taken on the unsmoothed image at half its own peak, so that the
+    smoothing does not widen it; flatness is judged on the smoothed image, against noise.
     """
-    top = cv2.minMaxLoc(prepared.smooth, main)[1]
-    span = top - prepared.baseline
-    region = (prepared.image >= prepared.baseline + 0.5 * span).view(np.uint8) & main
+    peak = cv2.minMaxLoc(prepared.image, main)[1]
+    region = (prepared.image >= 0.5 * (prepared.baseline + peak)).view(np.uint8) & main
+    span = cv2.minMaxLoc(prepared.smooth, main)[1] - prepared.baseline
     moments = cv2.moments(region, binaryImage=True)
     count = moments["m00"]
     if count == 0:
@@ -283,8 +287,11 @@ def _free_outline(
     for x, y in chains:
         single, extent = line_spread(x, y)
         allowed = tolerance(extent)
-        if single <= allowed:
+        if single <= allowed and extent >= _STRAIGHT_TAXELS:
             continue  # straight: no vertex, no curve
+        if single <= allowed:
+            straight = False  # too short to tell straight from curved
+            continue
         straight = False
         arms = two_arms(x, y)
         round_spread, _ = circle_spread(x, y)
