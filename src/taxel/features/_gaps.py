@@ -167,12 +167,15 @@ def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
     """Outer outlines of the non-contact regions at each level that may hold a gap.
 
     Cheap tests on the outline alone come first: a basin must hold at least a taxel's
-    disk and at most half the array (more is the free space around a contact), and one
+    disk, and the disk of the cover's blur (a narrower gap is filled in by the blur and
+    cannot dip to half its surroundings), and at most half the array (more is the free
+    space around a contact); one
     that reaches the array's border can only be a slot running off it at its ends: long
     (>= 2.5 widths) and meeting the border over no more than 2.5 widths.
     """
     rows, cols = prepared.image.shape
     limit = 0.5 * rows * cols
+    smallest = max(_MIN_GAP_AREA, math.pi * (0.5 * prepared.blur / prepared.mean_pitch) ** 2)
     found = []
     levels = [
         prepared.baseline + f * prepared.contrast
@@ -193,7 +196,7 @@ def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
             moments = cv2.moments(contour)
             # the outline runs through the outer taxels' centres: add half a taxel all round
             area = moments["m00"] + 0.5 * contour.shape[0]
-            if area < _MIN_GAP_AREA or area > limit:
+            if area < smallest or area > limit:
                 continue
             x, y = contour[:, 0, 0], contour[:, 0, 1]
             run = int(np.count_nonzero((x == 0) | (y == 0) | (x == cols - 1) | (y == rows - 1)))

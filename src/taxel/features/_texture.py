@@ -122,11 +122,18 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     """
     if not prepared.present:
         return 0, 0.0
-    image, mask = prepared.image, prepared.mask
+    # maxima are sought in the contact only: work on its bounding box, grown by the reach of
+    # the smoothing and of the ring, so that the crop's edges do not change the result
     reach = 2 * math.ceil(3 * sigma) + 1
-    smooth = cv2.GaussianBlur(image, (reach, reach), sigma, borderType=cv2.BORDER_REFLECT)
     local_sigma = sigma
     radius = _RING_RADIUS * local_sigma
+    grow = reach // 2 + math.ceil(radius) + 2
+    left, top, width, height = cv2.boundingRect(prepared.mask)
+    rows, cols = prepared.image.shape
+    r0, r1 = max(top - grow, 0), min(top + height + grow, rows)
+    c0, c1 = max(left - grow, 0), min(left + width + grow, cols)
+    image, mask = prepared.image[r0:r1, c0:c1], prepared.mask[r0:r1, c0:c1]
+    smooth = cv2.GaussianBlur(image, (reach, reach), sigma, borderType=cv2.BORDER_REFLECT)
     lowest = cv2.erode(smooth, np.ones((2 * math.ceil(radius) + 1,) * 2, np.uint8))
     raw_noise = prepared.raw_noise
     if prepared.residual is not None:
