@@ -101,13 +101,17 @@ def _table(data: dict[str, Any]) -> str:
 
 
 def _pitch(arguments: argparse.Namespace) -> Any:
-    """The taxel pitch [m] from --pitch or from the preset named by --sensor."""
+    """The taxel pitch [m] from --pitch, or the preset sensor named by --sensor.
+
+    A preset is handed to the features whole: besides its pitch they use its cover (defect
+    removal, the blur allowed for when judging sizes).
+    """
     if arguments.sensor is not None and arguments.pitch is not None:
         raise ValueError("give either --sensor PRESET or --pitch METRES, not both")
     if arguments.sensor is not None:
         from taxel.sensor import make_sensor
 
-        return make_sensor(arguments.sensor).taxel_pitch
+        return make_sensor(arguments.sensor)
     if arguments.pitch is None:
         raise ValueError("give the taxel pitch with --pitch METRES or a preset with --sensor")
     return arguments.pitch
@@ -147,7 +151,8 @@ def register(commands: Any) -> None:
     parser.add_argument(
         "--sensor",
         metavar="PRESET",
-        help="take the taxel pitch from a sensor preset (e.g. vhdta128, resistive16)",
+        help="the sensor preset the image comes from (e.g. vhdta128, resistive16): its "
+        "pitch and cover",
     )
     parser.add_argument("--pose", metavar="POSE.json", help="sensor pose T_BS in the base frame")
     parser.add_argument("--calibrated", action="store_true", help="the image holds pressure [Pa]")

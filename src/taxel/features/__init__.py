@@ -1,9 +1,12 @@
 """Passive tactile features of one tactile image (Ellis seed, section 2.1).
 
 Works on any tactile image: raw 8- or 16-bit frames, calibrated readings or pressure maps
-[Pa], of any array geometry (give the taxel pitch [m]). Positions are in the sensor frame
-``S`` of `taxel.frames` (x along columns, y along rows, z out of the sensor), and in the
-robot's base frame given the sensor's pose ``T_BS``.
+[Pa], of any array geometry (give the taxel pitch [m]). Given a sensor description instead
+(a `taxel.sensor.TactileSensor`), the features also use its cover: they remove sensor
+defects narrower than the cover's blur (scratches on an FTIR sensor's glass) and allow for
+the blur when they judge sizes. Positions are in the sensor frame ``S`` of `taxel.frames`
+(x along columns, y along rows, z out of the sensor), and in the robot's base frame given
+the sensor's pose ``T_BS``.
 
 Everything at once
 ------------------

@@ -28,6 +28,10 @@ from taxel.frames import as_pose, transform_directions, transform_points
 
 __all__ = ["ContactPose", "TactileFeatures", "extract"]
 
+# A region filling >= 90 % of its convex hull (taxels as unit squares) is convex up to the
+# taxel grid, so the seed's diameter test cannot find 4 crossings on it.
+_CONVEX_FILL = 0.9
+
 
 @dataclass(frozen=True)
 class ContactPose:
@@ -250,10 +254,13 @@ def extract(
 
     Notes
     -----
-    The image is validated and segmented once (`prepare`); edges, gaps, contact type,
-    plane and texture all use that one segmentation. See each feature's function for its
-    method: `find_contact`, `detect_edges`, `classify_contact`, `detect_holes`,
-    `detect_slots`, `contact_plane`, `texture_measures`.
+    The image is validated, cleaned, smoothed and segmented once (`prepare`), which also
+    finds the contact's outlines; the contact's moments, its outlines and one line and
+    circle fitted to them are then shared by the contact type, the gaps, the seed's hole
+    test and the plane, and each rule computes only the measures it needs. See each
+    feature's function for its method: `find_contact`, `classify_contact`, `detect_holes`,
+    `detect_slots`, `contact_plane`, `texture_measures`. (The seed's Canny edges remain
+    available from `detect_edges`; the features use the contact's outline instead.)
 
     Examples
     --------
@@ -304,9 +311,13 @@ def extract(
         contours=contours,
         outline_fit=outline_fit,
     )
-    test = diameter_test(prepared, cols, rows, outline_fit[1] if outline_fit else None)
+    plane = plane_core(prepared, depth_map, contours=contours)
+    # a line crosses the outline of one convex region at most twice: no need to walk it
+    convex = len(contours) == 1 and plane.fill >= _CONVEX_FILL
+    test = not convex and diameter_test(
+        prepared, cols, rows, outline_fit[1] if outline_fit else None
+    )
     hole_report = HoleReport(bool(holes), len(holes), tuple(holes), test)
     slot_report = SlotReport(bool(slots), len(slots), tuple(slots))
-    plane = plane_core(prepared, depth_map, contours=contours)
     located = _locate(contact, shape, plane, depth_map, pose_matrix)
     return TactileFeatures(contact, located, shape, hole_report, slot_report, plane, texture)

@@ -17,13 +17,14 @@ arc       a curved edge (drink-can rim)           a band whose centre line is a 
                                                   bowing >= 2 taxels over its length, and
                                                   thinner than half its radius
 point     a tip, or a contact too small for the   one compact region (axes within 2:1,
-          array to resolve its shape              inside the array) whose size <= the
-                                                  point size, max(`point_size`, 2 pitches)
+          array to resolve its shape              inside the array) whose size at half its
+                                                  peak <= max(`point_size`, 2 pitches),
+                                                  widened by the cover's blur (below)
 corner    a vertex (box corner): the contact      a compact region larger than the point
           spreads along the three edges that      size and 8 taxels whose outline has three
           leave it, a rounded triangle            lobes (3rd harmonic of radius >= 0.08)
-line      a face whose straight edge crosses      the only free outline is straight
-          the array (half-plane)
+line      a face whose straight edge crosses      the only free outline is straight over
+          the array (half-plane)                  8 taxels or more
 corner    a face with a vertex (wedge)            a free outline of two straight arms
                                                   meeting at <= 150 deg that fit it
                                                   better than one circle
@@ -31,11 +32,16 @@ surface   a flat or gently curved face: punch,    everything else (closed outlin
           large sphere, plate, washer             free outlines)
 ========  ======================================  ========================================
 
-A *free outline* is the part of a contact's outline that is neither on the array's border
-(the object continues there) nor the wall of a hole or slot (reported as such). A *band*'s
-centre line and direction are the weighted principal axis of its taxels (weights: signal
-above the baseline), and its circle is the weighted algebraic circle of the same taxels, so
-both edges and the ridge between them all count.
+A *free outline* is the part of a contact's outline that is neither near the array's
+border (the object continues there; within the cover's depth or blur of it the cover's own
+rim presses less) nor the wall of a hole or slot (reported as such). A *band*'s centre line
+and direction are the weighted principal axis of its taxels (weights: signal above the
+baseline), and its circle is the weighted (Taubin) circle of the same taxels, so both edges
+and the ridge between them all count.
+
+Given a sensor description (`taxel.sensor.TactileSensor`), the rules use its cover: the
+half-maximum width of its response to a point load (the *blur*, from the sensor's own
+mechanics) and its depth.
 """
 
 from __future__ import annotations
@@ -412,7 +418,7 @@ def classify_contact(
         Gaussian sigma [taxels].
     point_size : float, default 2.5e-3
         A compact contact whose size (major axis at half its peak) is at most this [m]
-        (or 2 taxel pitches) is a point.
+        (or 2 taxel pitches), allowing for the cover's blur, is a point.
     defects : bool, optional
         Remove defects narrower than 3 taxels first (see `prepare`).
 
