@@ -102,6 +102,21 @@ def _axes(
     return major, minor, angle
 
 
+def _axes_of(
+    count: float, mu20: float, mu02: float, mu11: float, pitch: tuple[float, float]
+) -> tuple[float, float, float]:
+    """`_axes` for one region, from its central moments (plain floats: no array overhead)."""
+    var_y = (mu02 / count + 1.0 / 12.0) * pitch[0] ** 2
+    var_x = (mu20 / count + 1.0 / 12.0) * pitch[1] ** 2
+    cov = mu11 / count * pitch[0] * pitch[1]
+    half_trace = (var_x + var_y) / 2
+    root = math.hypot((var_x - var_y) / 2, cov)
+    angle = 0.5 * math.atan2(2 * cov, var_x - var_y)
+    if angle <= -math.pi / 2 + 1e-12:
+        angle += math.pi
+    return 4.0 * math.sqrt(half_trace + root), 4.0 * math.sqrt(max(half_trace - root, 0.0)), angle
+
+
 def region_moments(prepared: Prepared, mask: np.ndarray) -> tuple[dict, dict]:
     """Image moments of a region and of its signal above the baseline (internal).
 
@@ -125,19 +140,9 @@ def _one_region(prepared: Prepared) -> Contact:
         row, col = weighted["m01"] / weighted["m00"], weighted["m10"] / weighted["m00"]
     else:
         row, col = binary["m01"] / count, binary["m10"] / count
-    mean_r, mean_c = binary["m01"] / count, binary["m10"] / count
-    sums = [
-        np.array([value])
-        for value in (
-            count,
-            binary["m01"],
-            binary["m10"],
-            binary["mu02"] + count * mean_r**2,
-            binary["mu20"] + count * mean_c**2,
-            binary["mu11"] + count * mean_r * mean_c,
-        )
-    ]
-    major, minor, angle = _axes(*sums, prepared.pitch)
+    major, minor, angle = _axes_of(
+        count, binary["mu20"], binary["mu02"], binary["mu11"], prepared.pitch
+    )
     image = prepared.image
     above = (image >= np.float32(prepared.low)).view(np.uint8) & mask
     raw_count = cv2.countNonZero(above) or int(count)
@@ -151,8 +156,8 @@ def _one_region(prepared: Prepared) -> Contact:
     centroid_m = ((col - (cols - 1) / 2) * col_pitch, (row - (rows - 1) / 2) * row_pitch)
     area = raw_count * prepared.taxel_area
     region = ContactRegion(
-        (row, col), centroid_m, int(raw_count), area, force, float(major[0]),
-        float(minor[0]), float(angle[0]), float(peak), border,
+        (row, col), centroid_m, int(raw_count), area, force, major, minor, angle,
+        float(peak), border,
     )  # fmt: skip
     return Contact(
         True, (row, col), centroid_m, area, force, region.major_axis_m, region.minor_axis_m,

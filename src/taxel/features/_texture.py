@@ -195,7 +195,7 @@ def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Textur
     sums = np.add.reduceat(power[order].astype(np.float64), starts)[:_OCTAVES]
     sums[starts[1:] == starts[:-1]] = 0.0  # an empty band (tiny images) holds nothing
     bands = sums / total
-    strongest = float(frequency[int(np.argmax(power))])
+    strongest = float(frequency[cv2.minMaxLoc(power.reshape(1, -1))[3][0]])  # fast argmax
     centroid = dot(power, frequency) / total
     wavelength = 1.0 / strongest if strongest > 0 else math.inf
     return Texture(
