@@ -79,6 +79,83 @@ def _speed(quick: bool) -> str:
     return "\n".join(lines)
 
 
+_STAGES = (
+    ("prepare", "validate, remove defects, noise, smooth, segment, outlines"),
+    ("contact_regions", "centroid, area, axes of the regions"),
+    ("texture_core", "high points, spectrum, roughness"),
+    ("gaps_core", "holes and slots (basins at three levels)"),
+    ("fit_line_and_circle", "line and circle through the outline"),
+    ("shape_core", "contact type"),
+    ("plane_core", "planarity"),
+    ("diameter_test", "the seed's hole test"),
+)
+
+
+def _profile(repeats: int) -> str:
+    """Where the time goes: CPU time of each stage of `extract`, median over the patterns."""
+    import taxel.features._extract as stages
+
+    spent: dict[str, list[float]] = {name: [] for name, _ in _STAGES}
+    originals = {name: getattr(stages, name) for name, _ in _STAGES}
+
+    def timed(name):
+        def call(*args, **kwargs):
+            start = CLOCK()
+            result = originals[name](*args, **kwargs)
+            spent[name][-1] = min(spent[name][-1], CLOCK() - start)
+            return result
+
+        return call
+
+    rows = []
+    try:
+        for name in originals:
+            setattr(stages, name, timed(name))
+        for label, shape, pitch in (
+            ("128x128", (128, 128), 3.3e-2 / 128),
+            ("16x16", (16, 16), 1.5e-3),
+        ):
+            per_pattern: dict[str, list[float]] = {name: [] for name in originals}
+            totals = []
+            for pattern in PATTERNS:
+                generator = getattr(synthetic, pattern)
+                if shape == (128, 128):
+                    image = synthetic.render(generator, ftir=True, noise=0.03, scratches=3, rng=0)
+                else:
+                    image = synthetic.render(generator, shape, noise=0.01, rng=0)
+                for name in originals:
+                    spent[name].append(math.inf)  # stays inf for a stage that is skipped
+                best = math.inf
+                for _ in range(repeats):
+                    start = CLOCK()
+                    extract(image, pitch)
+                    best = min(best, CLOCK() - start)
+                totals.append(best)
+                for name in originals:
+                    value = spent[name][-1]
+                    per_pattern[name].append(0.0 if not math.isfinite(value) else value)
+            total = statistics.median(totals)
+            parts = {name: statistics.median(values) for name, values in per_pattern.items()}
+            rows.append((label, total, parts))
+    finally:
+        for name, function in originals.items():
+            setattr(stages, name, function)
+    lines = [
+        "Where the time goes: the least CPU time of each stage over the calls, median over "
+        "the seven patterns [us] (`rest`: result objects, validation of the options, glue).\n",
+        "| stage | what | " + " | ".join(label for label, _, _ in rows) + " |",
+        "|---|---|" + "---|" * len(rows),
+    ]
+    for name, what in _STAGES:
+        cells = " | ".join(f"{parts[name] * 1e6:.0f}" for _, _, parts in rows)
+        lines.append(f"| {name} | {what} | {cells} |")
+    rest = " | ".join(f"{(total - sum(parts.values())) * 1e6:.0f}" for _, total, parts in rows)
+    lines.append(f"| rest | | {rest} |")
+    totals_cells = " | ".join(f"**{total * 1e6:.0f}**" for _, total, _ in rows)
+    lines.append(f"| **total** (least time per call) | | {totals_cells} |")
+    return "\n".join(lines)
+
+
 def _speed_simulated(frames: dict[str, list], repeats: int) -> str:
     """Median time per frame over the simulated frames (each timed `repeats` times)."""
     cells = []
@@ -311,6 +388,8 @@ def run(quick: bool = False, seed: int = SEED, details: bool = False) -> str:
         f"float32 add takes {calibration * 1e6:.2f} us (about 0.3-0.5 us on a current "
         "desktop core), so these numbers are a few times what a dedicated core gives.\n",
         _speed(quick),
+        "",
+        _profile(10 if quick else 60),
         "",
         _speed_simulated(frames, 5 if quick else 20),
         accuracy,

@@ -39,7 +39,8 @@ from taxel.features._contact import Contact, ContactRegion, find_contact
 from taxel.features._edges import Edges, detect_edges
 from taxel.features._extract import ContactPose, TactileFeatures, extract
 from taxel.features._fitting import CircleFit, LineFit, fit_circle, fit_line
-from taxel.features._gaps import Hole, HoleReport, Slot, SlotReport, detect_holes, detect_slots
+from taxel.features._gaps import Hole, HoleReport, Slot, SlotReport
+from taxel.features._holes import detect_holes, detect_slots
 from taxel.features._image import Prepared, pitch_pair, prepare, sensor_coordinates
 from taxel.features._shape import CONTACT_TYPES, ContactShape, classify_contact
 from taxel.features._surface import ContactPlane, contact_plane

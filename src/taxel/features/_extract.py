@@ -12,14 +12,8 @@ import numpy as np
 from taxel._validation import as_finite_array, check_positive, check_range
 from taxel.features._contact import Contact, contact_regions
 from taxel.features._fitting import fit_line_and_circle
-from taxel.features._gaps import (
-    HoleReport,
-    SlotReport,
-    diameter_test,
-    gaps_core,
-    outline_contours,
-    outline_taxels,
-)
+from taxel.features._gaps import HoleReport, SlotReport, gaps_core
+from taxel.features._holes import diameter_test, outline_contours, outline_taxels
 from taxel.features._image import prepare
 from taxel.features._shape import ContactShape, is_textured, shape_core
 from taxel.features._surface import ContactPlane, plane_core
