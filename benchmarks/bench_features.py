@@ -1,14 +1,18 @@
-"""Speed of taxel.features.extract (and, once the sensor simulator lands, its accuracy).
+"""Speed and accuracy of taxel.features.extract.
 
-``run()`` times the full feature set on 128x128 and 16x16 frames of each synthetic indenter.
-The accuracy part (>= 1000 simulated frames, every indenter; contact-type accuracy, hole and
-slot F1, centroid, line angle, arc radius and 3-D position errors) plugs in as
-``_accuracy(quick)``: give it frames with ground truth from the simulator and append its
-Markdown table to the section.
+Speed: the full feature set on 128x128 and 16x16 frames of each synthetic indenter of
+``tests/features/synthetic.py``. Accuracy: >= 1000 labelled frames per sensor from the sensor
+simulator (``features_scenes.py``: every indenter, random position, rotation, size, force,
+noise and sensor pose), scored for contact type (per-class confusion), hole and slot F1,
+centroid, line angle, arc radius and 3-D position errors.
+
+Run alone: ``python benchmarks/bench_features.py [--quick] [--seed N]``; ``--details``
+also prints every misclassified frame (for development).
 """
 
 from __future__ import annotations
 
+import math
 import statistics
 import sys
 import time
@@ -17,26 +21,44 @@ from pathlib import Path
 import cv2
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "features"))
-import synthetic
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(HERE.parent / "tests" / "features"))
+import synthetic  # noqa: E402
 
-from taxel.features import extract
+import features_scenes  # noqa: E402
+from taxel.features import CONTACT_TYPES, extract  # noqa: E402
 
 PATTERNS = ["cone", "band", "arc", "washer", "corner", "plate_with_slot", "texture"]
+SEED = 2026  # the benchmark's fixed seed
+RECHECK_SEED = 2027  # a second draw, to show the rules were not fitted to the first
+SENSORS = ("vhdta128", "16x16")
+CLOCK = time.thread_time  # CPU time of this thread: what one core spends, whatever the load
 
 
 def _median_time(image: np.ndarray, pitch: float, repeats: int) -> float:
     extract(image, pitch)  # warm caches
     times = []
     for _ in range(repeats):
-        start = time.perf_counter()
+        start = CLOCK()
         extract(image, pitch)
-        times.append(time.perf_counter() - start)
+        times.append(CLOCK() - start)
     return statistics.median(times)
 
 
+def _calibration() -> float:
+    """Time of one small NumPy operation (a 16 x 16 float32 add) on this machine [s]."""
+    array = np.zeros((16, 16), np.float32)
+    best = math.inf
+    for _ in range(20):
+        start = CLOCK()
+        for _ in range(1000):
+            array + 1
+        best = min(best, (CLOCK() - start) / 1000)
+    return best
+
+
 def _speed(quick: bool) -> str:
-    cv2.setNumThreads(1)
     repeats = 30 if quick else 300
     lines = [
         "| indenter | 128x128 FTIR 8-bit [us] | 16x16 pressure [us] |",
@@ -57,27 +79,324 @@ def _speed(quick: bool) -> str:
     return "\n".join(lines)
 
 
-def _accuracy(quick: bool) -> str | None:
-    """Accuracy on simulated frames: waits for the sensor simulator (taxel.sensor)."""
-    return None
+_STAGES = (
+    ("prepare", "validate, remove defects, noise, smooth, segment, outlines"),
+    ("contact_regions", "centroid, area, axes of the regions"),
+    ("texture_core", "high points, spectrum, roughness"),
+    ("gaps_core", "holes and slots (basins at three levels)"),
+    ("fit_line_and_circle", "line and circle through the outline"),
+    ("shape_core", "contact type"),
+    ("plane_core", "planarity"),
+    ("diameter_test", "the seed's hole test"),
+)
 
 
-def run(quick: bool = False) -> str:
+def _profile(repeats: int) -> str:
+    """Where the time goes: CPU time of each stage of `extract`, median over the patterns."""
+    import taxel.features._extract as stages
+
+    spent: dict[str, list[float]] = {name: [] for name, _ in _STAGES}
+    originals = {name: getattr(stages, name) for name, _ in _STAGES}
+
+    def timed(name):
+        def call(*args, **kwargs):
+            start = CLOCK()
+            result = originals[name](*args, **kwargs)
+            spent[name][-1] = min(spent[name][-1], CLOCK() - start)
+            return result
+
+        return call
+
+    rows = []
+    try:
+        for name in originals:
+            setattr(stages, name, timed(name))
+        for label, shape, pitch in (
+            ("128x128", (128, 128), 3.3e-2 / 128),
+            ("16x16", (16, 16), 1.5e-3),
+        ):
+            per_pattern: dict[str, list[float]] = {name: [] for name in originals}
+            totals = []
+            for pattern in PATTERNS:
+                generator = getattr(synthetic, pattern)
+                if shape == (128, 128):
+                    image = synthetic.render(generator, ftir=True, noise=0.03, scratches=3, rng=0)
+                else:
+                    image = synthetic.render(generator, shape, noise=0.01, rng=0)
+                for name in originals:
+                    spent[name].append(math.inf)  # stays inf for a stage that is skipped
+                best = math.inf
+                for _ in range(repeats):
+                    start = CLOCK()
+                    extract(image, pitch)
+                    best = min(best, CLOCK() - start)
+                totals.append(best)
+                for name in originals:
+                    value = spent[name][-1]
+                    per_pattern[name].append(0.0 if not math.isfinite(value) else value)
+            total = statistics.median(totals)
+            parts = {name: statistics.median(values) for name, values in per_pattern.items()}
+            rows.append((label, total, parts))
+    finally:
+        for name, function in originals.items():
+            setattr(stages, name, function)
+    lines = [
+        "Where the time goes: the least CPU time of each stage over the calls, median over "
+        "the seven patterns [us] (`rest`: result objects, validation of the options, glue).\n",
+        "| stage | what | " + " | ".join(label for label, _, _ in rows) + " |",
+        "|---|---|" + "---|" * len(rows),
+    ]
+    for name, what in _STAGES:
+        cells = " | ".join(f"{parts[name] * 1e6:.0f}" for _, _, parts in rows)
+        lines.append(f"| {name} | {what} | {cells} |")
+    rest = " | ".join(f"{(total - sum(parts.values())) * 1e6:.0f}" for _, total, parts in rows)
+    lines.append(f"| rest | | {rest} |")
+    totals_cells = " | ".join(f"**{total * 1e6:.0f}**" for _, total, _ in rows)
+    lines.append(f"| **total** (least time per call) | | {totals_cells} |")
+    return "\n".join(lines)
+
+
+def _speed_simulated(frames: dict[str, list], repeats: int) -> str:
+    """Median time per frame over the simulated frames (each timed `repeats` times)."""
+    cells = []
+    for name, labelled in frames.items():
+        sensor = features_scenes.benchmark_sensor(name)
+        times = []
+        for frame in labelled[:: max(len(labelled) // 140, 1)]:
+            extract(frame.raw, sensor)
+            runs = []
+            for _ in range(repeats):
+                start = CLOCK()
+                extract(frame.raw, sensor)
+                runs.append(CLOCK() - start)
+            times.append(statistics.median(runs))
+        cells.append(
+            f"{name}: median {statistics.median(times) * 1e6:.0f} us, "
+            f"95th percentile {np.percentile(times, 95) * 1e6:.0f} us"
+        )
+    return (
+        "Per simulated frame, given the sensor (so with defect removal on vhdta128), "
+        "median over every 7th frame of the accuracy set: " + "; ".join(cells) + "."
+    )
+
+
+def evaluate(frames: list, sensor) -> list[dict]:
+    """Run the features on each labelled frame: one row of truth and estimate per frame."""
+    rows = []
+    pitch = math.sqrt(sensor.taxel_pitch[0] * sensor.taxel_pitch[1])
+    for frame in frames:
+        features = extract(frame.raw, sensor, pose=frame.pose)
+        shape = features.shape
+        row = {
+            "frame": frame,
+            "indenter": frame.indenter,
+            "truth": frame.contact_type,
+            "type": features.contact_type,
+            "rule": shape.rule,
+            "hole": (frame.hole, features.holes.present),
+            "slot": (frame.slot, features.slots.present),
+            "centroid": None,
+            "position": None,
+            "angle": None,
+            "radius": None,
+        }
+        if features.contact.present and features.pose is not None:
+            estimate = np.array(features.contact.centroid_m)
+            row["centroid"] = float(np.linalg.norm(estimate - frame.centroid_m)) / pitch
+            base = np.array(features.pose.position_base_m)
+            row["position"] = float(np.linalg.norm(base - frame.position_base_m))
+        if frame.line_angle is not None and shape.line is not None:
+            error = (shape.line.angle_rad - frame.line_angle) % math.pi
+            row["angle"] = math.degrees(min(error, math.pi - error))
+        if frame.arc_radius is not None and shape.circle is not None:
+            radius = shape.circle.radius_m
+            row["radius"] = abs(radius / frame.arc_radius - 1.0) if math.isfinite(radius) else 1.0
+        rows.append(row)
+    return rows
+
+
+def _f1(pairs: list[tuple[bool, bool]]) -> str:
+    hits = sum(t and p for t, p in pairs)
+    false_alarms = sum(p and not t for t, p in pairs)
+    misses = sum(t and not p for t, p in pairs)
+    denominator = 2 * hits + false_alarms + misses
+    f1 = 2 * hits / denominator if denominator else 1.0
+    return f"{f1:.3f} ({hits} found, {false_alarms} false, {misses} missed)"
+
+
+def _stats(values: list, unit: str, scale: float = 1.0) -> str:
+    array = np.array([v for v in values if v is not None], dtype=float) * scale
+    if array.size == 0:
+        return "-"
+    return (
+        f"{np.median(array):.3g} / {np.percentile(array, 95):.3g} / {array.max():.3g} {unit} "
+        f"(n = {array.size})"
+    )
+
+
+def _confusion(rows: list[dict]) -> list[str]:
+    found = list(CONTACT_TYPES)
+    lines = [
+        "| true \\ found | " + " | ".join(found) + " | recall |",
+        "|---|" + "---|" * (len(found) + 1),
+    ]
+    for kind in CONTACT_TYPES[1:]:
+        subset = [r for r in rows if r["truth"] == kind]
+        if not subset:
+            continue
+        counts = [sum(r["type"] == f for r in subset) for f in found]
+        cells = [
+            f"**{c}**" if f == kind else (str(c) if c else ".")
+            for f, c in zip(found, counts, strict=True)
+        ]
+        recall = counts[found.index(kind)] / len(subset)
+        lines.append(f"| {kind} ({len(subset)}) | " + " | ".join(cells) + f" | {recall:.1%} |")
+    return lines
+
+
+def _per_indenter(rows: list[dict]) -> list[str]:
+    lines = [
+        "| indenter | frames | type correct | centroid median [taxels] |",
+        "|---|---|---|---|",
+    ]
+    for name in dict.fromkeys(r["indenter"] for r in rows):
+        subset = [r for r in rows if r["indenter"] == name]
+        correct = sum(r["type"] == r["truth"] for r in subset)
+        errors = [r["centroid"] for r in subset if r["centroid"] is not None]
+        centroid = f"{np.median(errors):.2f}" if errors else "-"
+        lines.append(f"| {name} | {len(subset)} | {correct} | {centroid} |")
+    return lines
+
+
+def score(rows: list[dict], name: str) -> list[str]:
+    """Markdown tables of one sensor's results."""
+    accuracy = np.mean([r["type"] == r["truth"] for r in rows])
+    target = " (target >= 97 %)" if name == "vhdta128" else ""
+    lines = [
+        f"\n### {name}: {len(rows)} frames\n",
+        f"Contact type accuracy **{accuracy:.1%}**{target}.\n",
+        *_confusion(rows),
+        "",
+        "| measure | median / 95th percentile / max | target |",
+        "|---|---|---|",
+        f"| hole detection F1 | {_f1([r['hole'] for r in rows])} | >= 0.98 |",
+        f"| slot detection F1 | {_f1([r['slot'] for r in rows])} | >= 0.95 |",
+        f"| centroid error | {_stats([r['centroid'] for r in rows], 'taxel')} | <= 0.5 taxel |",
+        "| line angle error (line frames) | "
+        f"{_stats([r['angle'] for r in rows if r['truth'] == 'line'], 'deg')} | <= 2 deg |",
+        "| arc radius error (arc frames) | "
+        f"{_stats([r['radius'] for r in rows if r['truth'] == 'arc'], '%', 100)} | <= 5 % |",
+        f"| 3-D position error | {_stats([r['position'] for r in rows], 'mm', 1e3)} | <= 0.5 mm |",
+        "",
+        *_per_indenter(rows),
+    ]
+    return lines
+
+
+def _rules_table() -> list[str]:
+    lines = ["| indenter | label |", "|---|---|"]
+    lines += [f"| {k} | {v} |" for k, v in features_scenes.LABEL_RULES.items()]
+    return lines
+
+
+def _accuracy(quick: bool, seed: int = SEED, details: bool = False) -> tuple[str, dict]:
+    """Accuracy on simulated frames (cached under benchmarks/.cache)."""
+    per_indenter = 10 if quick else 72
+    frames, parts = {}, []
+    for name in SENSORS:
+        sensor = features_scenes.benchmark_sensor(name)
+        frames[name] = features_scenes.load(name, per_indenter, seed)
+        rows = evaluate(frames[name], sensor)
+        parts += score(rows, name)
+        if details:
+            for r in rows:
+                if (
+                    r["type"] != r["truth"]
+                    or r["hole"][0] != r["hole"][1]
+                    or (r["slot"][0] != r["slot"][1])
+                ):
+                    f = r["frame"]
+                    print(
+                        f"{name} {r['indenter']:10s} {r['truth']:>7s} -> {r['type']:7s} "
+                        f"[{r['rule']}] hole {r['hole']} slot {r['slot']} F={f.force:.1f} "
+                        f"major={f.major_axis_m * 1e3:.2f}mm noise={f.noise_level:.3f} "
+                        f"{f.parameters}"
+                    )
+    recheck = []
+    if not quick:
+        recheck = [
+            f"\n### Second draw (seed {RECHECK_SEED}, 20 frames per indenter)\n",
+            "The same scoring on other random frames, to check that no rule was fitted to "
+            "the first draw.\n",
+            "| sensor | type accuracy | hole F1 | slot F1 | centroid median | line angle "
+            "median | arc radius median | 3-D median |",
+            "|---|---|---|---|---|---|---|---|",
+        ]
+        for name in SENSORS:
+            sensor = features_scenes.benchmark_sensor(name)
+            rows = evaluate(features_scenes.load(name, 20, RECHECK_SEED), sensor)
+            accuracy = np.mean([r["type"] == r["truth"] for r in rows])
+            medians = [
+                np.median([r[k] for r in rows if r[k] is not None] or [np.nan]) * scale
+                for k, scale in (("centroid", 1), ("angle", 1), ("radius", 100), ("position", 1e3))
+            ]
+            recheck.append(
+                f"| {name} | {accuracy:.1%} | {_f1([r['hole'] for r in rows]).split()[0]} | "
+                f"{_f1([r['slot'] for r in rows]).split()[0]} | {medians[0]:.3g} taxel | "
+                f"{medians[1]:.3g} deg | {medians[2]:.3g} % | {medians[3]:.3g} mm |"
+            )
+    header = [
+        "\n### Accuracy on simulated frames\n",
+        f"{per_indenter} frames of each of the 14 library indenters per sensor (seed {seed}), "
+        "from `benchmarks/features_scenes.py`: random size, force, position and rotation, "
+        "solved by `taxel.mechanics.solve_contact` through `TactileSensor.press` with the "
+        "sensor's own noise (camera for vhdta128; readout noise, gain, offset and crosstalk "
+        "for the 16x16 array). Then Gaussian noise of standard deviation `level x full "
+        "scale` is added, `level` uniform in [0, 5 %], full scale being the mean reading "
+        "change from the unloaded array to the whole array at the sensor's full-scale "
+        "pressure (96 DN on vhdta128, 3639 codes on the 16x16), and the frame is rounded "
+        "and clipped to the output's range. The 16x16 array is the `resistive16` preset "
+        "(2 mm pitch) with its contacts solved on 0.5 mm cells.\n",
+        "Labels come from the physics, never from the image. Contact type, by indenter "
+        "(the *point size* is max(2.5 mm, 2 taxel pitches), the 2.5 mm default "
+        "`point_size` or the array's Nyquist limit):\n",
+        *_rules_table(),
+        "",
+        "Centroid truth: the force-weighted centroid of the solved pressure on the array. "
+        "3-D truth: that point (z = 0, on the cover) mapped through a random pose (uniform "
+        "rotation, translation in a 1 m cube). Line angle truth: the placement angle; arc "
+        "radius truth: the rim radius. (*) A hole is enclosed when a 4-connected gap of the "
+        "solved contact, of at least one taxel's disk, mostly without material (+inf "
+        "heights), stays clear of the array's border by a wall as wide as the cover is deep "
+        "(2 taxels at least; closer, the blurred wall cannot be told from the array's edge); "
+        "a slot is present when half its length lies on the array with contact along both "
+        "walls. Errors are given as median / 95th percentile / max.\n",
+    ]
+    return "\n".join(header + parts + recheck), frames
+
+
+def run(quick: bool = False, seed: int = SEED, details: bool = False) -> str:
+    cv2.setNumThreads(1)
+    accuracy, frames = _accuracy(quick, seed, details)
+    calibration = _calibration()
     parts = [
         "## Features\n",
-        "`taxel.features.extract`, full feature set, median of "
-        f"{30 if quick else 300} calls on one core (OpenCV single-threaded), synthetic "
-        "frames from `tests/features/synthetic.py`.\n",
+        "`taxel.features.extract`, full feature set, median CPU time (`time.thread_time`) "
+        f"of {30 if quick else 300} calls on one core (OpenCV single-threaded, BLAS one "
+        "thread), synthetic frames from `tests/features/synthetic.py` given a bare pitch. "
+        "CPU time rather than wall time because the machine is shared: on it a 16 x 16 "
+        f"float32 add takes {calibration * 1e6:.2f} us (about 0.3-0.5 us on a current "
+        "desktop core), so these numbers are a few times what a dedicated core gives.\n",
         _speed(quick),
+        "",
+        _profile(10 if quick else 60),
+        "",
+        _speed_simulated(frames, 5 if quick else 20),
+        accuracy,
     ]
-    accuracy = _accuracy(quick)
-    parts.append(
-        "\nAccuracy on simulated frames: not measured yet (needs the sensor simulator)."
-        if accuracy is None
-        else accuracy
-    )
     return "\n".join(parts)
 
 
 if __name__ == "__main__":
-    print(run(quick="--quick" in sys.argv))
+    seed = int(sys.argv[sys.argv.index("--seed") + 1]) if "--seed" in sys.argv else SEED
+    print(run(quick="--quick" in sys.argv, seed=seed, details="--details" in sys.argv))

@@ -14,11 +14,13 @@ def washer():
     return np.where((r < 24) & (r > 10), 200, 24).astype(np.uint8)
 
 
-@pytest.mark.parametrize("suffix", [".npy", ".png", ".tif", ".csv"])
+@pytest.mark.parametrize("suffix", [".npy", ".npz", ".png", ".tif", ".csv"])
 def test_formats_give_json(tmp_path, capsys, washer, suffix):
     path = tmp_path / f"frame{suffix}"
     if suffix == ".npy":
         np.save(path, washer)
+    elif suffix == ".npz":
+        np.savez(path, frame=washer)
     elif suffix == ".csv":
         np.savetxt(path, washer, delimiter=",", fmt="%d")
     else:
@@ -43,12 +45,28 @@ def test_table_pose_and_figure(tmp_path, capsys, washer):
     assert figure.stat().st_size > 1000
 
 
+def test_sensor_preset_gives_the_pitch(tmp_path, capsys):
+    # a 4 x 6 taxel bar, columns 9-14, on a 16 x 16 array
+    frame = np.full((16, 16), 100.0)
+    frame[6:10, 9:15] = 3000.0
+    path = tmp_path / "frame.npy"
+    np.save(path, frame)
+    assert main(["features", str(path), "--sensor", "resistive16", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    x, y = data["contact"]["centroid_m"]
+    # resistive16 has a 2 mm pitch: column 11.5 lies 4 taxels (8 mm) right of the centre 7.5
+    assert x == pytest.approx(4 * 2e-3, abs=0.2e-3)
+    assert y == pytest.approx(0.0, abs=0.2e-3)
+
+
 @pytest.mark.parametrize(
     ("setup", "extra", "match"),
     [
         ("missing", ["--pitch", "1e-3"], "no such file"),
-        ("text", ["--pitch", "1e-3"], "unknown file type"),
+        ("text", ["--pitch", "1e-3"], "unknown frame format"),
         ("frame", [], "--pitch"),
+        ("frame", ["--sensor", "nosuch"], "nosuch"),
+        ("frame", ["--sensor", "vhdta128", "--pitch", "1e-3"], "not both"),
         ("frame", ["--pitch", "-1"], "`sensor_or_pitch` must be > 0"),
         ("nan", ["--pitch", "1e-3"], "finite"),
         ("badpose", ["--pitch", "1e-3", "--pose", "POSE"], "not valid JSON"),

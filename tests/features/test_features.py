@@ -289,7 +289,8 @@ def test_single_hot_taxel():
 
 
 def test_sixteen_by_sixteen_array():
-    image = render(cone, (16, 16), noise=0.01, rng=1, centre=(2.0, -3.0), radius=1.0)
+    # a pressure map as the taxels sample it (no cover blur: none is given to the features)
+    image = render(cone, (16, 16), blur=0.0, noise=0.01, rng=1, centre=(2.0, -3.0), radius=1.0)
     features = extract(image, 1.5e-3, calibrated=True)
     assert features.contact_type == "point"
     assert features.contact.total_force_n > 0
@@ -334,3 +335,22 @@ def test_bad_options():
         extract(image, 1e-3, point_size=0)
     with pytest.raises(ValueError, match="`depth`"):
         extract(image, 1e-3, depth=np.zeros((2, 2)))
+
+
+def test_defects_narrower_than_the_cover_blur_are_removed():
+    class Cover:
+        depth = 1.0e-3
+
+    class Sensor:  # a cover 4 taxels deep: no pressure feature is narrower than ~4 taxels
+        taxel_pitch = (0.25e-3, 0.25e-3)
+        cover = Cover()
+
+    y, x = np.mgrid[:64, :64]
+    blob = 100.0 * np.exp(-((x - 40) ** 2 + (y - 20) ** 2) / (2 * 3.0**2))
+    scratch = np.where(np.abs(y - 20 - 0.3 * (x - 40)) < 1.0, 60.0, 0.0)  # across the blob
+    image = 20.0 + blob + scratch
+    raw = find_contact(image, 0.25e-3)  # a pitch only: the scratch stretches the contact
+    cleaned = find_contact(image, Sensor())
+    assert raw.major_axis_m > 2 * raw.minor_axis_m
+    assert cleaned.major_axis_m == pytest.approx(cleaned.minor_axis_m, rel=0.1)
+    assert cleaned.centroid_index == pytest.approx((20.0, 40.0), abs=0.1)

@@ -14,31 +14,6 @@ import numpy as np
 __all__ = ["register"]
 
 
-def _load_image(path: Path) -> np.ndarray:
-    """Read .npy, .png/.tif (8 or 16 bit) or .csv as a 2-D array (until taxel.io lands)."""
-    if not path.is_file():
-        raise OSError(f"no such file: {path}")
-    suffix = path.suffix.lower()
-    if suffix == ".npy":
-        image = np.load(path, allow_pickle=False)
-    elif suffix == ".csv":
-        try:
-            image = np.loadtxt(path, delimiter=",", ndmin=2)
-        except ValueError as error:
-            raise ValueError(f"{path}: not a numeric CSV table ({error})") from None
-    elif suffix in (".png", ".tif", ".tiff"):
-        import cv2
-
-        image = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
-        if image is None:
-            raise ValueError(f"{path}: not a readable image")
-        if image.ndim == 3:  # a grey frame saved as colour: take the mean of the channels
-            image = image[..., :3].mean(axis=2)
-    else:
-        raise ValueError(f"{path}: unknown file type {suffix!r} (use .npy, .png, .tif or .csv)")
-    return np.asarray(image)
-
-
 def _load_pose(path: Path) -> np.ndarray:
     """A 4x4 pose from JSON: a nested list, or {"matrix": ...}, or translation + rotation."""
     from scipy.spatial.transform import Rotation
@@ -125,14 +100,31 @@ def _table(data: dict[str, Any]) -> str:
     return "\n".join(f"{name:<{width}}  {value}" for name, value in rows)
 
 
+def _pitch(arguments: argparse.Namespace) -> Any:
+    """The taxel pitch [m] from --pitch, or the preset sensor named by --sensor.
+
+    A preset is handed to the features whole: besides its pitch they use its cover (defect
+    removal, the blur allowed for when judging sizes).
+    """
+    if arguments.sensor is not None and arguments.pitch is not None:
+        raise ValueError("give either --sensor PRESET or --pitch METRES, not both")
+    if arguments.sensor is not None:
+        from taxel.sensor import make_sensor
+
+        return make_sensor(arguments.sensor)
+    if arguments.pitch is None:
+        raise ValueError("give the taxel pitch with --pitch METRES or a preset with --sensor")
+    return arguments.pitch
+
+
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.features import extract
+    from taxel.io import read_frame
 
-    if arguments.pitch is None:
-        raise ValueError("give the taxel pitch with --pitch METRES (sensor presets come later)")
-    image = _load_image(Path(arguments.file))
+    pitch = _pitch(arguments)
+    image = read_frame(arguments.file)
     pose = None if arguments.pose is None else _load_pose(Path(arguments.pose))
-    features = extract(image, arguments.pitch, pose=pose, calibrated=arguments.calibrated)
+    features = extract(image, pitch, pose=pose, calibrated=arguments.calibrated)
     data = features.to_dict()
     if arguments.json:
         sys.stdout.write(json.dumps(data, indent=2) + "\n")
@@ -141,7 +133,7 @@ def _run(arguments: argparse.Namespace) -> int:
     if arguments.figure:
         from taxel.viz import plot_features
 
-        figure = plot_features(image, features, arguments.pitch)
+        figure = plot_features(image, features, pitch)
         figure.savefig(arguments.figure, dpi=120)
     return 0
 
@@ -151,11 +143,17 @@ def register(commands: Any) -> None:
     parser = commands.add_parser(
         "features",
         help="passive tactile features of one image (contact, type, holes, slots, texture)",
-        description="Extract the passive tactile features of one image (.npy, .png/.tif of "
+        description="Extract the passive tactile features of one image (.npy, .npz, .png/.tif of "
         "8 or 16 bit, .csv) and print them as a table or as JSON.",
     )
     parser.add_argument("file", help="the tactile image")
     parser.add_argument("--pitch", type=float, metavar="METRES", help="taxel pitch [m]")
+    parser.add_argument(
+        "--sensor",
+        metavar="PRESET",
+        help="the sensor preset the image comes from (e.g. vhdta128, resistive16): its "
+        "pitch and cover",
+    )
     parser.add_argument("--pose", metavar="POSE.json", help="sensor pose T_BS in the base frame")
     parser.add_argument("--calibrated", action="store_true", help="the image holds pressure [Pa]")
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")

@@ -6,11 +6,12 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+import cv2
 import numpy as np
 
 from taxel.features._image import Prepared, prepare
 
-__all__ = ["Contact", "ContactRegion", "contact_regions", "find_contact"]
+__all__ = ["Contact", "ContactRegion", "contact_regions", "find_contact", "region_moments"]
 
 
 @dataclass(frozen=True)
@@ -101,6 +102,69 @@ def _axes(
     return major, minor, angle
 
 
+def _axes_of(
+    count: float, mu20: float, mu02: float, mu11: float, pitch: tuple[float, float]
+) -> tuple[float, float, float]:
+    """`_axes` for one region, from its central moments (plain floats: no array overhead)."""
+    var_y = (mu02 / count + 1.0 / 12.0) * pitch[0] ** 2
+    var_x = (mu20 / count + 1.0 / 12.0) * pitch[1] ** 2
+    cov = mu11 / count * pitch[0] * pitch[1]
+    half_trace = (var_x + var_y) / 2
+    root = math.hypot((var_x - var_y) / 2, cov)
+    angle = 0.5 * math.atan2(2 * cov, var_x - var_y)
+    if angle <= -math.pi / 2 + 1e-12:
+        angle += math.pi
+    return 4.0 * math.sqrt(half_trace + root), 4.0 * math.sqrt(max(half_trace - root, 0.0)), angle
+
+
+def region_moments(prepared: Prepared, mask: np.ndarray) -> tuple[dict, dict]:
+    """Image moments of a region and of its signal above the baseline (internal).
+
+    With one region, kept in ``prepared.memo`` for the other features.
+    """
+    if prepared.n_regions == 1 and "moments" in prepared.memo:
+        return prepared.memo["moments"]
+    binary = cv2.moments(mask, binaryImage=True)
+    weighted = cv2.moments((prepared.smooth - np.float32(prepared.baseline)) * mask)
+    if prepared.n_regions == 1:
+        prepared.memo["moments"] = (binary, weighted)
+    return binary, weighted
+
+
+def _one_region(prepared: Prepared) -> Contact:
+    """`contact_regions` for one region, from image moments (the usual case, ~5x faster)."""
+    mask = prepared.mask
+    binary, weighted = region_moments(prepared, mask)
+    count = binary["m00"]
+    if weighted["m00"] > 0:
+        row, col = weighted["m01"] / weighted["m00"], weighted["m10"] / weighted["m00"]
+    else:
+        row, col = binary["m01"] / count, binary["m10"] / count
+    major, minor, angle = _axes_of(
+        count, binary["mu20"], binary["mu02"], binary["mu11"], prepared.pitch
+    )
+    image = prepared.image
+    above = (image >= np.float32(prepared.low)).view(np.uint8) & mask
+    raw_count = cv2.countNonZero(above) or int(count)
+    peak = cv2.minMaxLoc(image, mask)[1]
+    border = bool(mask[0].any() or mask[-1].any() or mask[:, 0].any() or mask[:, -1].any())
+    force = None
+    if prepared.calibrated:
+        force = float(cv2.sumElems(image * mask)[0]) * prepared.taxel_area
+    rows, cols = mask.shape
+    row_pitch, col_pitch = prepared.pitch
+    centroid_m = ((col - (cols - 1) / 2) * col_pitch, (row - (rows - 1) / 2) * row_pitch)
+    area = raw_count * prepared.taxel_area
+    region = ContactRegion(
+        (row, col), centroid_m, int(raw_count), area, force, major, minor, angle,
+        float(peak), border,
+    )  # fmt: skip
+    return Contact(
+        True, (row, col), centroid_m, area, force, region.major_axis_m, region.minor_axis_m,
+        region.orientation_rad, (region,),
+    )  # fmt: skip
+
+
 def contact_regions(prepared: Prepared) -> Contact:
     """Measure the contact regions of a prepared image (the core of `find_contact`).
 
@@ -116,6 +180,8 @@ def contact_regions(prepared: Prepared) -> Contact:
     n = prepared.n_regions
     if n == 0:
         return Contact(False, None, None, 0.0, None, 0.0, 0.0, 0.0, ())
+    if n == 1:
+        return _one_region(prepared)
     labels = prepared.labels
     rows, cols = np.nonzero(labels)
     lab = labels[rows, cols]

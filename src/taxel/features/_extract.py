@@ -11,15 +11,20 @@ import numpy as np
 
 from taxel._validation import as_finite_array, check_positive, check_range
 from taxel.features._contact import Contact, contact_regions
-from taxel.features._edges import edges_core
-from taxel.features._gaps import HoleReport, SlotReport, diameter_test, gaps_core
+from taxel.features._fitting import fit_line_and_circle
+from taxel.features._gaps import HoleReport, SlotReport, gaps_core
+from taxel.features._holes import diameter_test, outline_contours, outline_taxels
 from taxel.features._image import prepare
-from taxel.features._shape import ContactShape, shape_core
+from taxel.features._shape import ContactShape, is_textured, shape_core
 from taxel.features._surface import ContactPlane, plane_core
 from taxel.features._texture import Texture, texture_core
 from taxel.frames import as_pose, transform_directions, transform_points
 
 __all__ = ["ContactPose", "TactileFeatures", "extract"]
+
+# A region filling >= 90 % of its convex hull (taxels as unit squares) is convex up to the
+# taxel grid, so the seed's diameter test cannot find 4 crossings on it.
+_CONVEX_FILL = 0.9
 
 
 @dataclass(frozen=True)
@@ -84,7 +89,8 @@ class TactileFeatures:
         Returns
         -------
         dict
-            Keys: contact, contact_type, contact_confidence, edge_score, corner_score,
+            Keys: contact, contact_type, contact_confidence, contact_rule, contact_size_m,
+            lobes, edge_score, corner_score,
             n_edges, line, circle, holes, slots, planarity, normal, texture, regions.
             Infinite or undefined numbers become None.
         """
@@ -109,6 +115,8 @@ class TactileFeatures:
             "contact_type": shape.contact_type,
             "contact_confidence": shape.confidence,
             "contact_rule": shape.rule,
+            "contact_size_m": shape.size_m,
+            "lobes": shape.lobes,
             "edge_score": shape.edge_score,
             "corner_score": shape.corner_score,
             "n_edges": shape.n_edges,
@@ -201,6 +209,7 @@ def extract(
     baseline: float | None = None,
     point_size: float = 2.5e-3,
     texture_sigma: float = 2.0,
+    defects: bool | None = None,
 ) -> TactileFeatures:
     """Every passive feature of one tactile image, located on the sensor and in the base frame.
 
@@ -210,7 +219,8 @@ def extract(
         A raw frame (8 or 16 bit), a calibrated reading or a pressure map [Pa] of any
         array geometry; larger values mean more pressure.
     sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
-        Taxel pitch [m], a (row, column) pair, or a sensor description.
+        Taxel pitch [m], a (row, column) pair, or a sensor description (a
+        `taxel.sensor.TactileSensor`: its cover depth then decides `defects`).
     pose : array_like, shape (4, 4), optional
         ``T_BS``, the sensor frame in the robot's base frame (see `taxel.frames`).
     depth : array_like, shape (rows, cols), optional
@@ -226,6 +236,10 @@ def extract(
         Compact contacts up to this size [m] are points (see `classify_contact`).
     texture_sigma : float, default 2.0
         Gaussian sigma before counting texture maxima [taxels].
+    defects : bool, optional
+        Remove bright sensor defects narrower than 3 taxels (scratches on an FTIR sensor's
+        glass, hot pixels) first; by default when the sensor's cover is 3 or more taxels
+        deep (see `prepare`).
 
     Returns
     -------
@@ -234,10 +248,13 @@ def extract(
 
     Notes
     -----
-    The image is validated and segmented once (`prepare`); edges, gaps, contact type,
-    plane and texture all use that one segmentation. See each feature's function for its
-    method: `find_contact`, `detect_edges`, `classify_contact`, `detect_holes`,
-    `detect_slots`, `contact_plane`, `texture_measures`.
+    The image is validated, cleaned, smoothed and segmented once (`prepare`), which also
+    finds the contact's outlines; the contact's moments, its outlines and one line and
+    circle fitted to them are then shared by the contact type, the gaps, the seed's hole
+    test and the plane, and each rule computes only the measures it needs. See each
+    feature's function for its method: `find_contact`, `classify_contact`, `detect_holes`,
+    `detect_slots`, `contact_plane`, `texture_measures`. (The seed's Canny edges remain
+    available from `detect_edges`; the features use the contact's outline instead.)
 
     Examples
     --------
@@ -250,7 +267,12 @@ def extract(
     [0.0, 0.125, 0.0]
     """
     prepared = prepare(
-        image, sensor_or_pitch, calibrated=calibrated, smoothing=smoothing, baseline=baseline
+        image,
+        sensor_or_pitch,
+        calibrated=calibrated,
+        smoothing=smoothing,
+        baseline=baseline,
+        defects=defects,
     )
     point_size = check_positive("point_size", point_size)
     texture_sigma = check_range("texture_sigma", texture_sigma, 0.0, 20.0, low_inclusive=False)
@@ -264,19 +286,32 @@ def extract(
                 f"got {depth_map.shape}"
             )
     contact = contact_regions(prepared)
-    edges = edges_core(prepared)
-    holes, slots, explained = gaps_core(prepared)
+    texture = texture_core(prepared, sigma=texture_sigma)
+    textured = is_textured(contact, texture.maxima_count)
+    holes, slots, explained = gaps_core(prepared, textured=textured)
+    contours = list(outline_contours(prepared))
+    cols, rows = outline_taxels(prepared, contours)
+    outline_fit = None
+    if cols.size >= 3:  # one line and circle through the outline, for shape and hole test
+        outline_fit = fit_line_and_circle(cols.astype(float), rows.astype(float))
     shape = shape_core(
         prepared,
         contact,
-        edges,
-        has_gaps=bool(holes or slots),
+        n_holes=len(holes),
+        n_slots=len(slots),
         explained=explained,
+        high_point_count=texture.maxima_count,
         point_size=point_size,
+        contours=contours,
+        outline_fit=outline_fit,
     )
-    hole_report = HoleReport(bool(holes), len(holes), tuple(holes), diameter_test(prepared, edges))
+    plane = plane_core(prepared, depth_map, contours=contours)
+    # a line crosses the outline of one convex region at most twice: no need to walk it
+    convex = len(contours) == 1 and plane.fill >= _CONVEX_FILL
+    test = not convex and diameter_test(
+        prepared, cols, rows, outline_fit[1] if outline_fit else None
+    )
+    hole_report = HoleReport(bool(holes), len(holes), tuple(holes), test)
     slot_report = SlotReport(bool(slots), len(slots), tuple(slots))
-    plane = plane_core(prepared, depth_map)
-    texture = texture_core(prepared, sigma=texture_sigma)
     located = _locate(contact, shape, plane, depth_map, pose_matrix)
     return TactileFeatures(contact, located, shape, hole_report, slot_report, plane, texture)

@@ -1,56 +1,70 @@
 """Holes and slots: gaps in a contact that are bounded by the contact (Ellis seed, 2.1).
 
-A *gap* is a connected set of non-contact taxels (4-neighbours, the dual of the contact's
-8-neighbours). Gaps are measured at half the surrounding contact level, where a blurred
-step crosses the true wall, so radius and width do not shrink with the blur.
+Where an object has no material (a hole, a slot), the surface pressure is zero; under the
+cover the pressure at the sensing depth dips there, to a fraction of the surrounding level
+that falls as the gap widens compared with the depth (to ~0.2-0.3 for a gap 3-4 depths
+across). A shallow dimple of the pressure, by contrast, comes from a face that is only
+less pressed there. So a *gap* is a dark basin enclosed by contact, most of it pressing
+clearly (at the contact's seed level, see `prepare`), whose bottom lies below half the
+level of the contact around it, and it is measured at that half level, where a
+blurred step crosses the true wall, so radius and width do not shrink with the blur.
+
+Basins are found as the outer outlines of the non-contact regions at three levels of the
+smoothed image (50 % and 25 % of the contrast, then the contact threshold), so that a hole
+in a dome-shaped contact (a gently convex plate) is enclosed at some level even where its
+surroundings press less than the contact's peak. The highest level is tried first: a slot
+whose floor is not equally deep all along is one basin there, and the pieces it may break
+into at lower levels are then already explained.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
 
 import cv2
 import numpy as np
 
-from taxel.features._edges import Edges, edges_core
-from taxel.features._fitting import circle_fit_core
-from taxel.features._image import Prepared, prepare
+from taxel.features._image import Prepared
 
-__all__ = [
-    "Hole",
-    "HoleReport",
-    "Slot",
-    "SlotReport",
-    "detect_holes",
-    "detect_slots",
-    "diameter_test",
-    "gaps_core",
-]
+__all__ = ["Hole", "HoleReport", "Slot", "SlotReport", "gaps_core"]
 
-# Smallest gap considered [taxels]: below ~1 taxel of radius a hole is not resolved.
-_MIN_GAP_AREA = 3
-_MIN_HOLE_INRADIUS = 1.0
+# Levels, besides the contact threshold, at which basins are searched [fraction of contrast].
+_LEVELS = (0.25, 0.5)
+# A basin holds a gap when its bottom lies below this fraction of the surrounding level.
+_DIP = 0.5
+# A gap lies in a face: at least half the ring 2-6 taxels around it presses as clearly as a
+# contact's seed (see `prepare`). Not so in the noisy fringe of a weak contact, where noise
+# alone can enclose a dark patch.
+_FACE = 0.5
+# Smallest gap considered: a disk of one taxel's radius at the half level [taxels^2].
+_MIN_GAP_AREA = math.pi
 # A hole is round: its equivalent-ellipse axes within 2:1, and its area at most 1.9 times the
-# largest inscribed disk (a disk gives ~1.2 on a grid; the irregular pores between the
+# largest inscribed disk (a disk gives ~1.2 on a grid; the irregular valleys between the
 # bumps of a texture give far more).
 _HOLE_AXIS_RATIO = 0.5
 _HOLE_FILL = 1.9
-# A hole lies in a face: the contact around it is at least 0.3 hole radii thick. A thin ring
-# around a wide gap is a rim (the top of a drink can), a curved edge rather than a face.
-_HOLE_WALL = 0.3
 # A slot is at least 2.5 times as long as it is wide (shorter: a hole or a notch), has
 # parallel walls (area >= 0.6 of length times its widest span; a wedge-shaped gap gives
 # ~0.5) and runs off the array only at its ends (border taxels <= 2.5 widths).
 _SLOT_ELONGATION = 2.5
 _SLOT_PARALLEL = 0.6
 _SLOT_BORDER_WIDTHS = 2.5
-# Diameters sampled by the seed's hole test and their extent beyond the fitted radius.
-_DIAMETERS = 16
-_DIAMETER_REACH = 2.0
-_RING = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (7, 7))
-_WALL = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (13, 13))
+# In a texture (many separate high points) the dark basins between them are the valleys of
+# the surface, not missing material; they are holes only when they make a perforated sheet:
+# 3 or more holes of equal size (radii within 15 %, as punched) in an evenly pressed sheet
+# (around the median hole, the 10th percentile of the contact level >= half its 90th).
+_SHEET_HOLES = 3
+_SHEET_SPREAD = 0.15
+_SHEET_EVENNESS = 0.5
+# At most this many basins are measured per level, largest first (a texture has hundreds of
+# tiny ones; the gaps an object's shape makes are among the largest).
+_MAX_BASINS = 24
+# A hole must be seen all round: a gap closer to the array's border than the cover is deep
+# (and than 2 taxels) cannot be told from a notch, since its wall on that side is blurred
+# into the array's edge.
+_BORDER_TAXELS = 2.0
+_GROW = np.ones((7, 7), np.uint8)
 
 
 @dataclass(frozen=True)
@@ -103,11 +117,12 @@ class HoleReport:
     Attributes
     ----------
     present : bool
-        At least one hole by the gap test (enclosed, round, in a face).
+        At least one hole by the gap test (enclosed, deep, round, resolved).
     count : int
     items : tuple of Hole
     diameter_test : bool
-        The seed's test: some diameter of the circle fitted to all edges crosses 4 edges.
+        The seed's test: some diameter of the circle fitted to the contact's outline
+        crosses it 4 times.
     """
 
     present: bool
@@ -132,205 +147,199 @@ class SlotReport:
     items: tuple[Slot, ...]
 
 
-def _to_metres(prepared: Prepared, row: float, col: float) -> tuple[float, float]:
+def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
+    """Outer outlines of the non-contact regions at each level that may hold a gap.
+
+    Cheap tests on the outline alone come first: a basin must hold at least a taxel's
+    disk, and the disk of the cover's blur (a narrower gap is filled in by the blur and
+    cannot dip to half its surroundings), and at most half the array (more is the free
+    space around a contact); one
+    that reaches the array's border can only be a slot running off it at its ends: long
+    (>= 2.5 widths) and meeting the border over no more than 2.5 widths.
+    """
     rows, cols = prepared.image.shape
-    return (
-        float((col - (cols - 1) / 2) * prepared.pitch[1]),
-        float((row - (rows - 1) / 2) * prepared.pitch[0]),
+    limit = 0.5 * rows * cols
+    smallest = max(_MIN_GAP_AREA, math.pi * (0.5 * prepared.blur / prepared.mean_pitch) ** 2)
+    found = []
+    levels = [
+        prepared.baseline + f * prepared.contrast
+        for f in sorted(_LEVELS, reverse=True)
+        if prepared.baseline + f * prepared.contrast > prepared.low
+    ] + [prepared.low]
+    for level in levels:
+        if level == prepared.low:
+            inside = prepared.mask
+        else:
+            inside = (prepared.smooth >= level).view(np.uint8)
+        # two-level hierarchy: every region's outer outline is at the top, however nested
+        contours, hierarchy = cv2.findContours(1 - inside, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
+        sized = []
+        for contour, links in zip(contours, hierarchy[0] if contours else (), strict=True):
+            if links[3] >= 0 or contour.shape[0] < 3:
+                continue
+            moments = cv2.moments(contour)
+            # the outline runs through the outer taxels' centres: add half a taxel all round
+            area = moments["m00"] + 0.5 * contour.shape[0]
+            if area < smallest or area > limit:
+                continue
+            x, y = contour[:, 0, 0], contour[:, 0, 1]
+            run = int(np.count_nonzero((x == 0) | (y == 0) | (x == cols - 1) | (y == rows - 1)))
+            if run:
+                count = max(moments["m00"], 1e-9)
+                var_x, var_y = moments["mu20"] / count, moments["mu02"] / count
+                spread = math.hypot((var_x - var_y) / 2, moments["mu11"] / count)
+                length = math.sqrt(12.0 * ((var_x + var_y) / 2 + spread)) + 1.0
+                width = area / length
+                if length < _SLOT_ELONGATION * width or run > _SLOT_BORDER_WIDTHS * width + 2:
+                    continue
+            sized.append((area, contour))
+        sized.sort(key=lambda item: -item[0])
+        found += [(contour, level) for _, contour in sized[:_MAX_BASINS]]
+    return found
+
+
+def _reaches_border(
+    region: np.ndarray, r0: int, r1: int, c0: int, c1: int, shape: tuple[int, int]
+) -> bool:
+    """Whether a window's region touches the array's border."""
+    return bool(
+        (r0 == 0 and region[0].any())
+        or (r1 == shape[0] and region[-1].any())
+        or (c0 == 0 and region[:, 0].any())
+        or (c1 == shape[1] and region[:, -1].any())
     )
 
 
-def _moments(rows: np.ndarray, cols: np.ndarray, pitch) -> tuple[float, float, float, float]:
-    """Centroid (row, col), largest and smallest variance [m^2] and major-axis angle."""
-    mean_r, mean_c = float(rows.mean()), float(cols.mean())
-    dr, dc = (rows - mean_r) * pitch[0], (cols - mean_c) * pitch[1]
-    var_y, var_x = float(dr @ dr) / rows.size, float(dc @ dc) / rows.size
-    cov = float(dr @ dc) / rows.size
-    half = (var_x + var_y) / 2
-    root = math.hypot((var_x - var_y) / 2, cov)
-    angle = (0.5 * math.atan2(2 * cov, var_x - var_y)) % math.pi
-    return mean_r, mean_c, half + root + pitch[0] * pitch[1] / 12, angle
-
-
-def gaps_core(prepared: Prepared) -> tuple[list[Hole], list[Slot], np.ndarray]:
-    """Holes, slots, and the mask of the gaps they occupy (internal)."""
+def _measure(
+    prepared: Prepared, contour: np.ndarray, level: float
+) -> tuple[Hole | Slot | None, tuple[slice, slice], np.ndarray, float] | None:
+    """Decide whether one basin holds a hole or a slot, and measure it."""
     shape = prepared.image.shape
-    explained = np.zeros(shape, np.uint8)
-    if not prepared.present:
-        return [], [], explained
-    gap = 1 - prepared.mask
-    count, labels, stats, _ = cv2.connectedComponentsWithStats(gap, connectivity=4)
-    if count <= 1:
-        return [], [], explained
-    gap_depth = cv2.distanceTransform(gap, cv2.DIST_L2, 3)
-    contact_depth = cv2.distanceTransform(prepared.mask, cv2.DIST_L2, 3)
+    left, top, width, height = cv2.boundingRect(contour)
+    margin = 6 + max(width, height) // 2
+    r0, r1 = max(top - margin, 0), min(top + height + margin, shape[0])
+    c0, c1 = max(left - margin, 0), min(left + width + margin, shape[1])
+    window = prepared.smooth[r0:r1, c0:c1]
+    own = np.zeros(window.shape, np.uint8)
+    cv2.drawContours(own, [contour], -1, 1, thickness=-1, offset=(-c0, -r0))
+    bottom = cv2.minMaxLoc(window, own)[0]
+    # distance of every window taxel from the basin: the wall is read 2-6 taxels out,
+    # past the blurred transition, and the gap grown up to 3 taxels to the half level
+    away = cv2.distanceTransform(1 - own, cv2.DIST_L2, 3)
+    ring = (away > 2.0) & (away <= 6.0)
+    wall = ring & (window >= level)
+    if not wall.any():
+        return None
+    if cv2.countNonZero((ring & (window >= prepared.high)).view(np.uint8)) < _FACE * (
+        cv2.countNonZero(ring.view(np.uint8))
+    ):
+        return None  # no face around it (a noisy fringe, the valleys of a texture)
+    values = window[wall]
+    tenth, ninetieth = (values.size - 1) // 10, (values.size - 1) * 9 // 10
+    ordered = np.partition(values, (tenth, ninetieth))
+    surround = float(ordered[ninetieth])
+    evenness = (float(ordered[tenth]) - prepared.baseline) / max(
+        surround - prepared.baseline, 1e-30
+    )
+    half = prepared.baseline + _DIP * (surround - prepared.baseline)
+    if bottom > half:
+        return None  # a dimple of the pressure, not a gap in the contact
+    region = ((away <= 3.0) & (window < half)).view(np.uint8)
+    if _reaches_border(region, r0, r1, c0, c1, shape) and not _reaches_border(
+        own, r0, r1, c0, c1, shape
+    ):
+        # the face itself falls below the half level toward the array's edge (a pad
+        # presses less at its rim): measure the gap where it is enclosed instead
+        region = own & (window < half).view(np.uint8)
+    moments = cv2.moments(region, binaryImage=True)
+    area = moments["m00"]
+    where = (slice(r0, r1), slice(c0, c1))
+    if area < _MIN_GAP_AREA:
+        return None, where, region, evenness
+    row_pitch, col_pitch = prepared.pitch
+    pitch = math.sqrt(row_pitch * col_pitch)
+    mean_r, mean_c = moments["m01"] / area + r0, moments["m10"] / area + c0
+    var_y = (moments["mu02"] / area + 1 / 12) * row_pitch**2
+    var_x = (moments["mu20"] / area + 1 / 12) * col_pitch**2
+    cov = moments["mu11"] / area * row_pitch * col_pitch
+    root = math.hypot((var_x - var_y) / 2, cov)
+    major, minor = (var_x + var_y) / 2 + root, max((var_x + var_y) / 2 - root, 0.0)
+    angle = (0.5 * math.atan2(2 * cov, var_x - var_y)) % math.pi
+    rows, cols = shape
+    centre_m = (
+        float((mean_c - (cols - 1) / 2) * col_pitch),
+        float((mean_r - (rows - 1) / 2) * row_pitch),
+    )
+    gap_area = area * row_pitch * col_pitch
+    inradius = float(cv2.distanceTransform(region, cv2.DIST_L2, 3).max())
+    border = _reaches_border(region, r0, r1, c0, c1, shape)
+    edge = max(_BORDER_TAXELS, prepared.cover_depth / pitch)
+    left, top, width, height = cv2.boundingRect(region)
+    clearance = min(c0 + left, r0 + top, cols - c0 - left - width, rows - r0 - top - height)
+    if not border and clearance >= edge:
+        round_enough = math.sqrt(minor / major) >= _HOLE_AXIS_RATIO
+        filled = area / (math.pi * (inradius + 0.5) ** 2) <= _HOLE_FILL
+        if round_enough and filled and inradius >= 1.0:
+            hole = Hole((mean_r, mean_c), centre_m, math.sqrt(gap_area / math.pi))
+            return hole, where, region, evenness
+    length = math.sqrt(12.0 * major)
+    slot_width = gap_area / length
+    span = 2.0 * (inradius + 0.5) * pitch
+    if length < _SLOT_ELONGATION * slot_width or gap_area < _SLOT_PARALLEL * length * span:
+        return None, where, region, evenness
+    if border:
+        on_border = int(
+            region[0].sum() * (r0 == 0)
+            + region[-1].sum() * (r1 == rows)
+            + region[:, 0].sum() * (c0 == 0)
+            + region[:, -1].sum() * (c1 == cols)
+        )
+        if on_border * pitch > _SLOT_BORDER_WIDTHS * slot_width:
+            return None, where, region, evenness
+    slot = Slot((mean_r, mean_c), centre_m, angle, slot_width, length, bool(border))
+    return slot, where, region, evenness
+
+
+def _perforated(holes: list[Hole], evenness: list[float]) -> bool:
+    """Whether the holes of a texture make a perforated sheet (see the module constants)."""
+    if len(holes) < _SHEET_HOLES:
+        return False
+    radii = np.array([hole.radius_m for hole in holes])
+    middle = len(holes) // 2
+    even = float(np.partition(np.array(evenness), middle)[middle])
+    return float(radii.std()) <= _SHEET_SPREAD * float(radii.mean()) and even >= _SHEET_EVENNESS
+
+
+def gaps_core(
+    prepared: Prepared, *, textured: bool = False
+) -> tuple[list[Hole], list[Slot], np.ndarray]:
+    """Holes, slots, and the mask of the gaps they occupy (internal).
+
+    `textured`: the contact is a texture (see `classify_contact`); its basins are then
+    holes only when they make a perforated sheet, and never slots.
+    """
+    explained = np.zeros(prepared.image.shape, np.uint8)
     holes: list[Hole] = []
     slots: list[Slot] = []
-    row_pitch, col_pitch = prepared.pitch
-    for index in range(1, count):
-        left, top, width, height, area = stats[index]
-        if area < _MIN_GAP_AREA:
-            continue
-        border = left == 0 or top == 0 or left + width == shape[1] or top + height == shape[0]
-        if border and area > 0.5 * gap.size:
-            continue  # the free space around a contact, not a gap in it
-        margin = 6 + int(max(width, height)) // 2
-        r0, r1 = max(top - margin, 0), min(top + height + margin, shape[0])
-        c0, c1 = max(left - margin, 0), min(left + width + margin, shape[1])
-        own = labels[r0:r1, c0:c1] == index
-        inradius = float(gap_depth[r0:r1, c0:c1][own].max())
-        # measure at half the surrounding contact level (see the module notes)
-        grown = cv2.dilate(own.view(np.uint8), _RING).view(bool)
-        window = prepared.smooth[r0:r1, c0:c1]
-        # the wall's level is read up to 6 taxels out, past the blurred transition
-        wall = cv2.dilate(own.view(np.uint8), _WALL).view(bool) & (prepared.mask[r0:r1, c0:c1] > 0)
-        if not wall.any():
-            continue
-        level = float(np.percentile(window[wall], 90))
-        half = prepared.baseline + 0.5 * (level - prepared.baseline)
-        rows, cols = np.nonzero(grown & (window < half))
-        if rows.size < _MIN_GAP_AREA:
-            continue
-        mean_r, mean_c, major_var, angle = _moments(rows + r0, cols + c0, prepared.pitch)
-        gap_area = rows.size * row_pitch * col_pitch
-        centre_m = _to_metres(prepared, mean_r, mean_c)
-        pitch = math.sqrt(row_pitch * col_pitch)
-        length = math.sqrt(12.0 * major_var)
-        if not border and inradius >= _MIN_HOLE_INRADIUS:
-            radius = math.sqrt(gap_area / math.pi)
-            minor_var = max(
-                float(np.var(rows)) * row_pitch**2 + float(np.var(cols)) * col_pitch**2
-                - major_var + pitch**2 / 6,
-                0.0,
-            )  # fmt: skip
-            round_enough = math.sqrt(minor_var / major_var) >= _HOLE_AXIS_RATIO
-            filled = area / (math.pi * (inradius + 0.5) ** 2) <= _HOLE_FILL
-            wall_thickness = 2.0 * float(contact_depth[r0:r1, c0:c1].max()) * pitch
-            if round_enough and filled and wall_thickness >= _HOLE_WALL * radius:
-                holes.append(Hole((mean_r, mean_c), centre_m, radius))
-                explained[r0:r1, c0:c1][grown] = 1
+    evenness: list[float] = []
+    if not prepared.present:
+        return holes, slots, explained
+    for contour, level in _basins(prepared):
+        moments = cv2.moments(contour)
+        if moments["m00"] > 0:  # a basin already explained (at a higher level) is done
+            col, row = moments["m10"] / moments["m00"], moments["m01"] / moments["m00"]
+            if explained[int(round(row)), int(round(col))]:
                 continue
-        span = 2.0 * (inradius + 0.5) * pitch
-        slot_width = gap_area / length
-        if length < _SLOT_ELONGATION * slot_width or gap_area < _SLOT_PARALLEL * length * span:
+        measured = _measure(prepared, contour, level)
+        if measured is None or measured[0] is None:
             continue
-        if border:
-            on_border = int(
-                own[0].sum() * (r0 == 0)
-                + own[-1].sum() * (r1 == shape[0])
-                + own[:, 0].sum() * (c0 == 0)
-                + own[:, -1].sum() * (c1 == shape[1])
-            )
-            if on_border * pitch > _SLOT_BORDER_WIDTHS * slot_width:
-                continue
-        slots.append(Slot((mean_r, mean_c), centre_m, angle, slot_width, length, bool(border)))
-        explained[r0:r1, c0:c1][grown] = 1
+        found, where, region, even = measured
+        if isinstance(found, Hole):
+            holes.append(found)
+            evenness.append(even)
+        elif not textured:
+            slots.append(found)
+        explained[where] |= cv2.dilate(region, _GROW)
+    if textured and not _perforated(holes, evenness):
+        holes = []
     return holes, slots, explained
-
-
-def diameter_test(prepared: Prepared, edges: Edges) -> bool:
-    """The seed's hole test on a prepared image and its edges (internal core).
-
-    Fits a circle to all edge taxels and walks 16 diameters of it across 2 radii each
-    way (the fit to both rims of a washer lies between them): a hole is present when
-    some diameter crosses the contact's outline 4 times, twice on each side of the fitted
-    centre (object rim, hole rim), with the centre off contact. Crossings are counted on the
-    contact mask rather than on the thin Canny edges, which a sampled line can slip
-    between at a diagonal.
-    """
-    if edges.rows.size < 8:
-        return False
-    fit = circle_fit_core(edges.cols.astype(float), edges.rows.astype(float))
-    shape = prepared.mask.shape
-    if not math.isfinite(fit.radius_m) or fit.radius_m < 2 or fit.radius_m > 2 * max(shape):
-        return False
-    centre_c, centre_r = fit.center_m
-    steps = np.arange(-_DIAMETER_REACH * fit.radius_m, _DIAMETER_REACH * fit.radius_m, 0.5)
-    angles = np.arange(_DIAMETERS) * (math.pi / _DIAMETERS)
-    cols = np.rint(centre_c + np.cos(angles)[:, None] * steps).astype(int)
-    rows = np.rint(centre_r + np.sin(angles)[:, None] * steps).astype(int)
-    inside = (rows >= 0) & (rows < shape[0]) & (cols >= 0) & (cols < shape[1])
-    touched = np.zeros(rows.shape, bool)
-    touched[inside] = prepared.mask[rows[inside], cols[inside]] > 0
-    middle = steps.size // 2
-    before = np.count_nonzero(np.diff(touched[:, : middle + 1], axis=1), axis=1)
-    after = np.count_nonzero(np.diff(touched[:, middle:], axis=1), axis=1)
-    return bool(np.any((before == 2) & (after == 2) & ~touched[:, middle]))
-
-
-def detect_holes(image: Any, sensor_or_pitch: Any, *, smoothing: float = 1.0) -> HoleReport:
-    """Holes in the contact, by the gap test and by the seed's diameter test.
-
-    Parameters
-    ----------
-    image : array_like, shape (rows, cols)
-        Raw frame, calibrated reading or pressure map.
-    sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
-        Taxel pitch [m].
-    smoothing : float, default 1.0
-        Gaussian sigma [taxels].
-
-    Returns
-    -------
-    HoleReport
-
-    Notes
-    -----
-    Gap test (decides `present`): a gap is a hole when it is enclosed by contact (it does
-    not reach the array's border), at least one taxel in inradius, round (axes within 2:1,
-    area at most 1.9 times its inscribed disk) and lies in a face (the surrounding contact
-    is at least 0.3 hole radii thick). Its radius comes from its area at half the
-    surrounding contact level. A hole cut by the array's border is not reported.
-
-    Diameter test (the seed's, reported as `diameter_test`): fit a circle to all edges; a
-    hole exists if a diameter of it crosses four edges. It assumes a round object (a
-    washer) and says no for a hole in a plate larger than the array.
-
-    Examples
-    --------
-    >>> y, x = np.mgrid[:64, :64] - 31.5
-    >>> washer = ((np.hypot(x, y) < 24) & (np.hypot(x, y) > 10)).astype(float)
-    >>> report = detect_holes(washer, 0.5e-3)
-    >>> report.count, report.diameter_test, round(report.items[0].radius_m * 1e3, 1)
-    (1, True, 5.0)
-    """
-    prepared = prepare(image, sensor_or_pitch, smoothing=smoothing)
-    holes, _, _ = gaps_core(prepared)
-    edges = edges_core(prepared)
-    return HoleReport(bool(holes), len(holes), tuple(holes), diameter_test(prepared, edges))
-
-
-def detect_slots(image: Any, sensor_or_pitch: Any, *, smoothing: float = 1.0) -> SlotReport:
-    """Slots in the contact: long gaps with parallel walls.
-
-    Parameters
-    ----------
-    image : array_like, shape (rows, cols)
-        Raw frame, calibrated reading or pressure map.
-    sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
-        Taxel pitch [m].
-    smoothing : float, default 1.0
-        Gaussian sigma [taxels].
-
-    Returns
-    -------
-    SlotReport
-
-    Notes
-    -----
-    A gap is a slot when it is at least 2.5 times as long as wide, its walls are parallel
-    (area at least 0.6 of length times its widest span) and, if it reaches the array's
-    border, it does so only at its ends. Length is sqrt(12) times the standard deviation
-    along the long axis (exact for a rectangle); width is area over length, both measured
-    at half the surrounding contact level.
-
-    Examples
-    --------
-    >>> plate = np.ones((64, 64)); plate[28:36, 8:56] = 0.0  # 8 x 48 taxel slot
-    >>> slot = detect_slots(plate, 1e-3).items[0]
-    >>> round(slot.width_m * 1e3), round(slot.length_m * 1e3), round(float(slot.angle_rad), 3)
-    (8, 48, 0.0)
-    """
-    prepared = prepare(image, sensor_or_pitch, smoothing=smoothing)
-    _, slots, _ = gaps_core(prepared)
-    return SlotReport(bool(slots), len(slots), tuple(slots))

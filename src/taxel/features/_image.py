@@ -8,18 +8,26 @@ calibrated readings and pressure maps alike:
 - the *noise* sigma of the smoothed image, from the median absolute deviation of the
   high-pass residual (robust to the few taxels that belong to edges or scratches);
 - the *contrast*, peak minus baseline of the smoothed image.
+
+Sensor defects are removed first when the sensor's cover is known to be deep: the cover
+low-passes the pressure (a point load spreads over a half-maximum width of about 1.1-1.3
+times the depth of the sensing plane), so when that depth spans 3 or more taxels no true
+pressure feature is narrower than ~3.5 taxels, and bright structures under 3 taxels wide
+(scratches on an FTIR sensor's glass, hot pixels) are defects. A grey-level opening with a
+3 x 3 square removes them and leaves every wider structure as it was.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import cv2
 import numpy as np
 
 from taxel._validation import check_finite, check_positive, check_range
+from taxel.features._sensor import cover_blur, cover_depth
 
 __all__ = ["Prepared", "pitch_pair", "prepare", "sensor_coordinates"]
 
@@ -39,6 +47,12 @@ F_LOW = 0.12
 F_HIGH = 0.35
 # A contrast below this fraction of the image's magnitude is rounding, not contact.
 _RELATIVE_FLOOR = 1e-6
+# Remove defects when the sensing plane lies at least this many taxels under the surface.
+_DEFECT_DEPTH = 3.0
+_DEFECT_KERNEL = np.ones((3, 3), np.uint8)
+# MAD of a standard normal, and the noise gain of `x - mean of its 4 neighbours`.
+_MAD = 1.4826
+_LAPLACE_GAIN = math.sqrt(1.25)
 
 
 @dataclass(frozen=True)
@@ -61,11 +75,30 @@ class Prepared:
         Hysteresis thresholds on `smooth` [image units].
     mask : numpy.ndarray (uint8)
         1 on contact taxels.
-    labels : numpy.ndarray (int32)
-        Connected contact regions numbered 1..n (0 elsewhere).
+    labels : numpy.ndarray (int32, or uint8 with one region)
+        Connected contact regions numbered 1..n (0 elsewhere); with one region, `mask`.
     n_regions : int
     calibrated : bool
         Whether `image` holds pressure [Pa].
+    peak : float
+        Largest value of `smooth` [image units].
+    defects_removed : bool
+        Whether `image` was cleaned of defects narrower than 3 taxels (see the module notes).
+    cover_depth : float
+        Depth of the sensing plane under the surface [m] (0 without a sensor description).
+    blur : float
+        Half-maximum width of the cover's response to a point load [m] (0 without a
+        sensor description; see `taxel.features._sensor.cover_blur`).
+    residual : numpy.ndarray or None
+        ``x - mean(4 neighbours)`` of the input on its interior, on rows 1, 1 + step, ...
+        (see `residual_step`): the noise, wherever the signal is locally linear.
+    residual_step : int
+        Row step of `residual` (2 on images over 64 x 64, else 1).
+    outlines : tuple of numpy.ndarray or None
+        Outlines of the contact (outer boundaries and hole walls, every taxel, as
+        `cv2.findContours` gives them), when segmentation found them; else None.
+    memo : dict
+        Intermediates one feature computes and another reuses (image moments).
     """
 
     image: np.ndarray
@@ -81,6 +114,14 @@ class Prepared:
     labels: np.ndarray
     n_regions: int
     calibrated: bool
+    peak: float = 0.0
+    defects_removed: bool = False
+    residual: np.ndarray | None = None
+    residual_step: int = 1
+    outlines: tuple[np.ndarray, ...] | None = None
+    memo: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
+    blur: float = 0.0
+    cover_depth: float = 0.0
 
     @property
     def present(self) -> bool:
@@ -172,43 +213,79 @@ def sensor_coordinates(
 
 
 def _as_image(image: Any) -> np.ndarray:
-    """Validate a 2-D numeric image and return it as float32."""
+    """Validate a 2-D numeric image and return it as (contiguous) float32."""
     array = np.asarray(image)
-    if array.dtype == bool:
-        array = array.astype(np.uint8)
-    if not (np.issubdtype(array.dtype, np.integer) or np.issubdtype(array.dtype, np.floating)):
+    kind = array.dtype.kind
+    if kind not in "biuf":
         raise TypeError(f"`image` must be numeric, got dtype {array.dtype}")
     if array.ndim != 2:
         raise ValueError(f"`image` must be 2-D (rows, cols), got shape {array.shape}")
     if min(array.shape) < 3:
         raise ValueError(f"`image` must be at least 3x3 taxels, got shape {array.shape}")
-    image32 = array.astype(np.float32)
-    if not np.isfinite(image32).all():
+    image32 = np.ascontiguousarray(array, dtype=np.float32)
+    # integers are finite; a float image is when its sum is (one pass instead of two)
+    if kind == "f" and not math.isfinite(float(image32.sum(dtype=np.float64))):
         bad = int(image32.size - np.count_nonzero(np.isfinite(image32)))
-        raise ValueError(f"`image` must be finite everywhere, got {bad} NaN or inf value(s)")
+        if bad:
+            raise ValueError(f"`image` must be finite everywhere, got {bad} NaN or inf value(s)")
     return image32
 
 
-def _noise_sigma(image: np.ndarray, smooth: np.ndarray, smoothing: float) -> tuple[float, float]:
-    """Noise sigma of `image` and of `smooth`, from the median absolute high-pass residual."""
+def laplacian_residual(image: np.ndarray, step: int = 1) -> np.ndarray:
+    """``x - mean(4 neighbours)`` on the image's interior, on every `step`-th row.
+
+    Shape (len(range(1, rows - 1, step)), cols - 2): rows 1, 1 + step, ... of the image.
+    """
+    end = image.shape[0] - 1
+    centre = image[1:end:step, 1:-1]
+    around = (
+        image[0 : end - 1 : step, 1:-1]
+        + image[2 : end + 1 : step, 1:-1]
+        + image[1:end:step, :-2]
+        + image[1:end:step, 2:]
+    )
+    return centre - np.float32(0.25) * around
+
+
+def noise_from_residual(residual: np.ndarray) -> float:
+    """Noise sigma from Laplacian residuals (any shape): 1.4826 MAD / sqrt(1.25)."""
+    values = np.abs(residual).ravel()
+    if values.size == 0:
+        return 0.0
+    middle = values.size // 2
+    return _MAD * float(np.partition(values, middle)[middle]) / _LAPLACE_GAIN
+
+
+def _noise_sigma(residual: np.ndarray) -> float:
+    """Noise sigma of an image, from the median absolute deviation of a discrete Laplacian.
+
+    ``x - mean(4 neighbours)`` cancels any locally linear signal (the flanks of a contact)
+    and leaves white noise of sigma n as sqrt(1.25) n; its median absolute value is robust
+    to the few taxels where the signal curves. On images over 64 x 64 the residual is taken
+    on every other row and the median over every other column, which is as good (the
+    noise is white) and costs a quarter.
+    """
+    if residual.shape[1] > 64:
+        residual = residual[:, ::2]
+    return noise_from_residual(residual)
+
+
+def _smoothing_gain(smoothing: float) -> float:
+    """Noise sigma left by a Gaussian of sigma `smoothing` [taxels] on white noise of sigma 1."""
     if smoothing == 0:
-        residual = image - cv2.GaussianBlur(image, (0, 0), 1.0, borderType=cv2.BORDER_REFLECT)
-        smoothing = 1.0
-        gain = 1.0
-    else:
-        residual = image - smooth
-        gain = None
-    # a 2-D Gaussian of sigma s has sum(g^2) ~ 1 / (4 pi s^2): white noise of sigma n leaves
-    # n sqrt(sum g^2) in the smoothed image and n sqrt(1 - 2 g0 + sum g^2) in the residual
-    squares = 1.0 / (4.0 * math.pi * smoothing**2)
-    centre = 1.0 / (2.0 * math.pi * smoothing**2)
-    residual_gain = math.sqrt(max(1.0 - 2.0 * min(centre, 1.0) + min(squares, 1.0), 1e-6))
-    if gain is None:
-        gain = math.sqrt(min(squares, 1.0))
-    # subsample 2x2 on large images: the median of 4k values is as good and 4x cheaper
-    sample = residual[::2, ::2] if residual.size > 4096 else residual
-    raw = 1.4826 * float(np.median(np.abs(sample))) / residual_gain
-    return raw, raw * gain
+        return 1.0
+    # a 2-D Gaussian of sigma s has sum(g^2) = 1 / (4 pi s^2) (continuous limit)
+    return min(1.0 / (2.0 * math.sqrt(math.pi) * smoothing), 1.0)
+
+
+def removes_defects(sensor_or_pitch: Any, defects: bool | None) -> bool:
+    """Whether defects are removed: as asked, or (None) when the cover is >= 3 taxels deep."""
+    if defects is not None:
+        return bool(defects)
+    depth = cover_depth(sensor_or_pitch)
+    if depth is None:
+        return False
+    return depth >= _DEFECT_DEPTH * max(pitch_pair(sensor_or_pitch))
 
 
 def prepare(
@@ -218,8 +295,9 @@ def prepare(
     calibrated: bool = False,
     smoothing: float = 1.0,
     baseline: float | None = None,
+    defects: bool | None = None,
 ) -> Prepared:
-    """Validate, smooth and segment a tactile image (the first step of every feature).
+    """Validate, clean, smooth and segment a tactile image (the first step of every feature).
 
     Parameters
     ----------
@@ -227,7 +305,8 @@ def prepare(
         Raw frame (any integer or float dtype), calibrated reading or pressure map [Pa];
         larger values mean more pressure.
     sensor_or_pitch : float, pair or object with ``taxel_pitch``
-        Taxel pitch [m].
+        Taxel pitch [m], or a sensor description (a `taxel.sensor.TactileSensor`), whose
+        cover depth then decides `defects`.
     calibrated : bool, default False
         The image holds pressure [Pa]: areas carry a total force.
     smoothing : float, default 1.0
@@ -235,6 +314,10 @@ def prepare(
     baseline : float, optional
         The no-contact level [image units]; by default the minimum of the smoothed image,
         which fails only when the whole sensor is in contact (pass 0 for pressure maps).
+    defects : bool, optional
+        Remove bright defects narrower than 3 taxels (glass scratches, hot pixels) with a
+        3 x 3 grey-level opening. By default only when `sensor_or_pitch` describes a cover
+        whose sensing plane lies 3 or more taxels deep (see the module notes).
 
     Returns
     -------
@@ -250,31 +333,47 @@ def prepare(
     values = _as_image(image)
     pitch = pitch_pair(sensor_or_pitch)
     smoothing = check_range("smoothing", smoothing, 0.0, 20.0)
+    step = 2 if values.shape[0] > 64 and values.shape[1] > 64 else 1
+    residual = laplacian_residual(values, step)
+    raw_noise = _noise_sigma(residual)
+    cleaned = removes_defects(sensor_or_pitch, defects)
+    if cleaned:
+        values = cv2.morphologyEx(values, cv2.MORPH_OPEN, _DEFECT_KERNEL)
     if smoothing > 0:
-        smooth = cv2.GaussianBlur(values, (0, 0), smoothing, borderType=cv2.BORDER_REFLECT)
+        reach = 2 * math.ceil(3 * smoothing) + 1  # 3 sigma each way: 99.7 % of the weight
+        smooth = cv2.GaussianBlur(values, (reach, reach), smoothing, borderType=cv2.BORDER_REFLECT)
     else:
         smooth = values
-    raw_noise, noise = _noise_sigma(values, smooth, smoothing)
-    level = float(smooth.min()) if baseline is None else check_finite("baseline", baseline)
-    peak = float(smooth.max())
+    noise = raw_noise * _smoothing_gain(smoothing)
+    lowest, peak, _, _ = cv2.minMaxLoc(smooth)
+    level = lowest if baseline is None else check_finite("baseline", baseline)
     contrast = peak - level
     floor = max(_RELATIVE_FLOOR * max(abs(peak), abs(level)), 1e-30)
     low = level + max(K_LOW * noise, F_LOW * contrast)
     high = level + max(K_HIGH * noise, F_HIGH * contrast)
+    common = {
+        "image": values, "smooth": smooth, "pitch": pitch, "baseline": level, "noise": noise,
+        "contrast": contrast, "raw_noise": raw_noise, "low": low, "high": high,
+        "calibrated": bool(calibrated), "peak": peak, "defects_removed": cleaned,
+        "residual": residual, "residual_step": step, "blur": cover_blur(sensor_or_pitch),
+        "cover_depth": cover_depth(sensor_or_pitch) or 0.0,
+    }  # fmt: skip
     if contrast <= max(K_HIGH * noise, floor):
         empty = np.zeros(values.shape, np.uint8)
-        return Prepared(
-            values, smooth, pitch, level, noise, contrast, raw_noise, low, high, empty,
-            empty.astype(np.int32), 0, bool(calibrated),
-        )  # fmt: skip
+        return Prepared(mask=empty, labels=empty.astype(np.int32), n_regions=0, **common)
     candidates = (smooth >= low).view(np.uint8)
+    # outer boundaries and hole walls in a two-level hierarchy: one outer boundary is one
+    # region (an island inside a hole is put at the top level too), the usual case, and
+    # it is seeded by the peak itself; its outlines serve every later feature
+    outlines, hierarchy = cv2.findContours(candidates, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
+    if int(np.count_nonzero(hierarchy[0][:, 3] < 0)) == 1:
+        return Prepared(
+            mask=candidates, labels=candidates, n_regions=1, outlines=outlines, **common
+        )
     count, labels = cv2.connectedComponents(candidates, connectivity=8, ltype=cv2.CV_32S)
     seeded = np.bincount(labels[smooth >= high], minlength=count) > 0
     seeded[0] = False
     keep = np.cumsum(seeded).astype(np.int32) * seeded
     labels = keep[labels]
     mask = (labels > 0).view(np.uint8)
-    return Prepared(
-        values, smooth, pitch, level, noise, contrast, raw_noise, low, high, mask, labels,
-        int(seeded.sum()), bool(calibrated),
-    )  # fmt: skip
+    return Prepared(mask=mask, labels=labels, n_regions=int(seeded.sum()), **common)

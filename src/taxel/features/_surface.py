@@ -48,22 +48,35 @@ class ContactPlane:
     rms_m: float | None
 
 
-def plane_core(prepared: Prepared, depth: np.ndarray | None = None) -> ContactPlane:
-    """Planarity and normal of a prepared image (internal core of `contact_plane`)."""
+def plane_core(
+    prepared: Prepared,
+    depth: np.ndarray | None = None,
+    *,
+    contours: list[np.ndarray] | None = None,
+) -> ContactPlane:
+    """Planarity and normal of a prepared image (internal core of `contact_plane`).
+
+    `contours`: the contact's outlines, if already found (their hull is the contact's).
+    """
     if not prepared.present:
         return ContactPlane(0.0, 0.0, 0.0, None, None, None)
     mask = prepared.mask
     interior = cv2.erode(mask, _ERODE)
-    if not interior.any():
+    if not cv2.countNonZero(interior):
         interior = mask
-    values = prepared.smooth[interior.view(bool)] - prepared.baseline
-    mean = float(values.mean())
-    uniformity = min(max(1.0 - float(values.std()) / mean, 0.0), 1.0) if mean > 0 else 0.0
-    points = cv2.findNonZero(mask)
-    hull = float(cv2.contourArea(cv2.convexHull(points))) if points.shape[0] >= 3 else 0.0
+    mean, deviation = cv2.meanStdDev(prepared.smooth, mask=interior)
+    above = float(mean[0, 0]) - prepared.baseline
+    spread = float(deviation[0, 0])
+    uniformity = min(max(1.0 - spread / above, 0.0), 1.0) if above > 0 else 0.0
+    if contours is None:
+        contours, _ = cv2.findContours(mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)
+    points = np.concatenate(contours) if contours else np.zeros((0, 1, 2), np.int32)
+    hull = cv2.convexHull(points) if points.shape[0] >= 3 else None
+    hull_area = float(cv2.contourArea(hull)) if hull is not None else 0.0
+    perimeter = cv2.arcLength(hull, True) if hull is not None else 0.0
     # a taxel is a unit square: the hull through taxel centres misses half a taxel all round
-    area = float(np.count_nonzero(mask))
-    fill = min(area / (hull + 0.5 * cv2.arcLength(cv2.convexHull(points), True) + 1), 1.0)
+    area = float(cv2.countNonZero(mask))
+    fill = min(area / (hull_area + 0.5 * perimeter + 1), 1.0)
     normal = tilt = rms = None
     if depth is not None:
         rows, cols = np.nonzero(interior)  # the rim's taxels are half in contact
@@ -77,8 +90,8 @@ def plane_core(prepared: Prepared, depth: np.ndarray | None = None) -> ContactPl
             norm = math.sqrt(a * a + b * b + 1.0)
             normal = (float(-a / norm), float(-b / norm), float(1.0 / norm))
             tilt = math.acos(min(1.0 / norm, 1.0))
-            residual = (z - design @ np.array([a, b, c])) / norm
-            rms = float(math.sqrt(float(residual @ residual) / residual.size))
+            residual = (z - (a * x + b * y + c)) / norm
+            rms = float(math.sqrt(float(np.einsum("i,i->", residual, residual)) / residual.size))
     return ContactPlane(uniformity * fill, uniformity, fill, normal, tilt, rms)
 
 

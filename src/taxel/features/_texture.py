@@ -10,20 +10,30 @@ import cv2
 import numpy as np
 
 from taxel._validation import check_range
-from taxel.features._image import Prepared, prepare
+from taxel.features._fitting import dot
+from taxel.features._image import Prepared, noise_from_residual, prepare
 
-__all__ = ["Texture", "texture_core", "texture_measures"]
+__all__ = ["Texture", "high_points", "texture_core", "texture_measures"]
 
 # The seed smooths before counting maxima, against camera noise and glass scratches; 2
 # taxels keeps bumps a few taxels apart (the rasp's teeth) and merges single-taxel specks.
 _TEXTURE_SIGMA = 2.0
-# A maximum counts when it stands 4 noise sigmas (of the texture-smoothed image) above both
-# the baseline and the lowest point within 3 sigma around it: noise alone gives none, and
-# the ripples of noise on a face are not high points of the object.
+# A high point of the object is a local maximum inside the contact that stands above every
+# point of the circle of radius 2 sigma around it by 4 noise sigmas (of the texture-smoothed
+# image, the noise measured inside the contact, where a camera's shot noise is larger than
+# on the background): noise alone gives none, and neither do the points along a ridge (an
+# edge or a rim pressed in), which the circle crosses twice at the ridge's own height. And a
+# high point is a peak, curved down in every direction: the cover spreads an asperity's load
+# evenly around it, so the weaker principal curvature is at least 1/4 of the stronger one;
+# a ridge has almost none along its crest (what bumps a ridge's crest is noise).
 _MAXIMUM_SIGMAS = 4.0
+_ISOTROPY = 0.25
+_RING_RADIUS = 2.0  # [sigma]
+_RING_POINTS = 32
 # Octave bands of spatial frequency, from the Nyquist limit down: [f/2, f], [f/4, f/2], ...
 _OCTAVES = 4
-_WINDOW_CACHE: dict[tuple[int, int], np.ndarray] = {}
+_SPECTRUM_CACHE: dict[tuple, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = {}
+_THREE = np.ones((3, 3), np.uint8)
 
 
 @dataclass(frozen=True)
@@ -33,11 +43,13 @@ class Texture:
     Attributes
     ----------
     maxima_count : int
-        Local maxima of the smoothed image above the noise (the seed's first measure).
+        High points of the contact: local maxima of the smoothed image inside the contact
+        that rise clearly above their surroundings (the seed's first measure).
     mean_height : float
         Their mean height above the baseline [image units] (the seed's second measure).
     maxima_density_per_m2 : float
-        Maxima per unit contact area [1/m^2]; unlike the count, independent of image size.
+        High points per unit contact area [1/m^2]; unlike the count, independent of the
+        image size.
     dominant_wavelength_m : float or None
         Wavelength of the strongest spatial frequency of the image's ripple [m].
     spectral_centroid_per_m : float or None
@@ -60,66 +72,135 @@ class Texture:
     roughness: float
 
 
-def _hann(shape: tuple[int, int]) -> np.ndarray:
-    window = _WINDOW_CACHE.get(shape)
-    if window is None:
+def _spectrum_layout(
+    shape: tuple[int, int], pitch: tuple[float, float]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Hann window, frequency [cycles/m] per bin, bins sorted by octave band, band starts.
+
+    Bins are numbered as the flattened (rows, cols) spectrum; octave 0 is the finest, and
+    the mean and the frequencies below the last octave come last (unused).
+    """
+    key = (shape, pitch)
+    layout = _SPECTRUM_CACHE.get(key)
+    if layout is None:
         window = np.outer(np.hanning(shape[0]), np.hanning(shape[1])).astype(np.float32)
-        _WINDOW_CACHE[shape] = window
-    return window
+        fy = np.fft.fftfreq(shape[0], pitch[0])[:, None]
+        fx = np.fft.fftfreq(shape[1], pitch[1])[None, :]
+        frequency = np.sqrt(fy**2 + fx**2).ravel()
+        nyquist = 0.5 / math.sqrt(pitch[0] * pitch[1])
+        band = np.full(frequency.shape, _OCTAVES, np.intp)
+        for octave in range(_OCTAVES - 1, -1, -1):
+            band[frequency > nyquist / 2 ** (octave + 1)] = octave
+        band[0] = _OCTAVES  # the mean
+        order = np.argsort(band, kind="stable")
+        starts = np.searchsorted(band[order], np.arange(_OCTAVES + 1))
+        layout = (window, frequency.astype(np.float32), order, starts)
+        _SPECTRUM_CACHE[key] = layout
+    return layout
+
+
+def _offsets(radius: float, step: int) -> tuple[np.ndarray, np.ndarray]:
+    """Row and column offsets of the ring at `radius`, then of the curvatures' neighbours.
+
+    The ring has `_RING_POINTS` points; the eight neighbours lie `step` away (E, W, S, N,
+    SE, SW, NE, NW).
+    """
+    angles = np.arange(_RING_POINTS) * (2 * math.pi / _RING_POINTS)
+    ring_rows = np.rint(radius * np.sin(angles)).astype(np.intp)
+    ring_cols = np.rint(radius * np.cos(angles)).astype(np.intp)
+    near_rows = np.array([0, 0, step, -step, step, step, -step, -step])
+    near_cols = np.array([step, -step, 0, 0, step, -step, step, -step])
+    return np.concatenate((ring_rows, near_rows)), np.concatenate((ring_cols, near_cols))
+
+
+def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[int, float]:
+    """Number and mean height above the baseline of the contact's high points (internal).
+
+    (Analysing the smoothed image on every other taxel would be 4 times cheaper, but a
+    peak's height is then read up to a taxel off its top, which loses the weakest teeth of
+    a rasp pressed hard.)
+    """
+    if not prepared.present:
+        return 0, 0.0
+    # maxima are sought in the contact only: work on its bounding box, grown by the reach of
+    # the smoothing and of the ring, so that the crop's edges do not change the result
+    reach = 2 * math.ceil(3 * sigma) + 1
+    local_sigma = sigma
+    radius = _RING_RADIUS * local_sigma
+    grow = reach // 2 + math.ceil(radius) + 2
+    left, top, width, height = cv2.boundingRect(prepared.mask)
+    rows, cols = prepared.image.shape
+    r0, r1 = max(top - grow, 0), min(top + height + grow, rows)
+    c0, c1 = max(left - grow, 0), min(left + width + grow, cols)
+    image, mask = prepared.image[r0:r1, c0:c1], prepared.mask[r0:r1, c0:c1]
+    smooth = cv2.GaussianBlur(image, (reach, reach), sigma, borderType=cv2.BORDER_REFLECT)
+    lowest = cv2.erode(smooth, np.ones((2 * math.ceil(radius) + 1,) * 2, np.uint8))
+    raw_noise = prepared.raw_noise
+    if prepared.residual is not None:
+        step = prepared.residual_step
+        inside = prepared.residual[prepared.mask[1:-1:step, 1:-1].view(bool)]
+        raw_noise = max(raw_noise, noise_from_residual(inside[::4]))
+    # white noise of sigma n leaves n / (2 sqrt(pi) sigma) after a Gaussian of sigma
+    noise = raw_noise / (2.0 * math.sqrt(math.pi) * sigma)
+    margin = np.float32(max(_MAXIMUM_SIGMAS * noise, 1e-9 * prepared.contrast, 1e-30))
+    # a plateau of equal values is one maximum, not many: one taxel per connected plateau
+    peaks = (smooth >= cv2.dilate(smooth, _THREE)) & (smooth > lowest + margin)
+    peaks = peaks.view(np.uint8) & mask
+    points = cv2.findNonZero(peaks)
+    if points is None:
+        return 0, 0.0
+    points = points.reshape(-1, 2)
+    if points.shape[0] > 1:
+        labels = cv2.connectedComponents(peaks)[1]
+        points = points[np.unique(labels[points[:, 1], points[:, 0]], return_index=True)[1]]
+    step = max(int(round(local_sigma)), 1)
+    row_offsets, col_offsets = _offsets(radius, step)
+    rows = np.clip(points[:, 1:2] + row_offsets, 0, smooth.shape[0] - 1)
+    cols = np.clip(points[:, 0:1] + col_offsets, 0, smooth.shape[1] - 1)
+    around = smooth[rows, cols]
+    heights = smooth[points[:, 1], points[:, 0]]
+    near = around[:, _RING_POINTS:] - heights[:, None]  # E, W, S, N, SE, SW, NE, NW
+    high = heights > around[:, :_RING_POINTS].max(axis=1) + margin
+    # principal curvatures by central differences one sigma each way
+    fxx, fyy = near[:, 0] + near[:, 1], near[:, 2] + near[:, 3]
+    fxy = 0.25 * (near[:, 4] - near[:, 5] - near[:, 6] + near[:, 7])
+    half_trace, root = 0.5 * (fxx + fyy), np.sqrt(0.25 * (fxx - fyy) ** 2 + fxy**2)
+    high &= half_trace + root <= _ISOTROPY * (half_trace - root)  # weak vs strong, both < 0
+    if not high.any():
+        return 0, 0.0
+    return int(high.sum()), float(heights[high].mean()) - prepared.baseline
 
 
 def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Texture:
     """Texture measures of a prepared image (internal core of `texture_measures`)."""
-    image = prepared.image
-    smooth = cv2.GaussianBlur(image, (0, 0), sigma, borderType=cv2.BORDER_REFLECT)
-    dilated = cv2.dilate(smooth, np.ones((3, 3), np.uint8))
-    reach = 2 * math.ceil(3 * sigma) + 1
-    lowest = cv2.erode(smooth, cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (reach, reach)))
-    # white noise of sigma n leaves n / (2 sqrt(pi) sigma) after a Gaussian of sigma
-    noise = prepared.raw_noise / (2.0 * math.sqrt(math.pi) * sigma)
-    margin = _MAXIMUM_SIGMAS * max(noise, 1e-9 * abs(prepared.contrast), 1e-30)
-    peaks = (
-        (smooth >= dilated) & (smooth > prepared.baseline + margin) & (smooth > lowest + margin)
-    )
-    # a plateau of equal values is one maximum, not many: count connected plateaus
-    count, labels = cv2.connectedComponents(peaks.view(np.uint8), connectivity=8)
-    n_maxima = count - 1
-    if n_maxima:
-        heights = np.bincount(labels.ravel(), smooth.ravel(), minlength=count)[1:]
-        sizes = np.bincount(labels.ravel(), minlength=count)[1:]
-        mean_height = float(np.mean(heights / sizes)) - prepared.baseline
-    else:
-        mean_height = 0.0
-    contact = prepared.mask.view(bool)
-    area = float(np.count_nonzero(contact)) * prepared.taxel_area
-    density = n_maxima / area if area > 0 else 0.0
     if not prepared.present:
-        return Texture(n_maxima, mean_height, density, None, None, (0.0,) * _OCTAVES, 0.0)
-    values = prepared.smooth[contact]
-    above = float(values.mean()) - prepared.baseline
-    roughness = float(values.std()) / above if above > 0 else 0.0
+        return Texture(0, 0.0, 0.0, None, None, (0.0,) * _OCTAVES, 0.0)
+    n_maxima, mean_height = high_points(prepared, sigma=sigma)
+    area = float(cv2.countNonZero(prepared.mask)) * prepared.taxel_area
+    density = n_maxima / area
+    mean, deviation = cv2.meanStdDev(prepared.smooth, mask=prepared.mask)
+    above = float(mean[0, 0]) - prepared.baseline
+    roughness = float(deviation[0, 0]) / above if above > 0 else 0.0
     # ripple: the whole image minus its mean, Hann-windowed (the seed measures texture over
     # the entire image)
-    ripple = image - np.float32(image.mean())
-    power = np.abs(np.fft.rfft2(ripple * _hann(image.shape))) ** 2
-    rows, cols = image.shape
-    fy = np.fft.fftfreq(rows, prepared.pitch[0])[:, None]
-    fx = np.fft.rfftfreq(cols, prepared.pitch[1])[None, :]
-    frequency = np.sqrt(fy**2 + fx**2)
-    power[0, 0] = 0.0
-    total = float(power.sum())
-    nyquist = 0.5 / prepared.mean_pitch
+    image = prepared.image
+    window, frequency, order, starts = _spectrum_layout(image.shape, prepared.pitch)
+    ripple = (image - np.float32(cv2.mean(image)[0])) * window
+    spectrum = cv2.dft(ripple, flags=cv2.DFT_COMPLEX_OUTPUT)
+    power = (spectrum[..., 0] ** 2 + spectrum[..., 1] ** 2).ravel()
+    power[0] = 0.0
+    total = float(power.sum(dtype=np.float64))
     if total <= 0:
         return Texture(n_maxima, mean_height, density, None, None, (0.0,) * _OCTAVES, roughness)
-    bands = []
-    for octave in range(_OCTAVES):
-        high, low = nyquist / 2**octave, nyquist / 2 ** (octave + 1)
-        inside = (frequency > low) & (frequency <= high) if octave else (frequency > low)
-        bands.append(float(power[inside].sum()) / total)
-    strongest = float(frequency.flat[int(np.argmax(power))])
-    centroid = float((power * frequency).sum()) / total
+    sums = np.add.reduceat(power[order].astype(np.float64), starts)[:_OCTAVES]
+    sums[starts[1:] == starts[:-1]] = 0.0  # an empty band (tiny images) holds nothing
+    bands = sums / total
+    strongest = float(frequency[cv2.minMaxLoc(power.reshape(1, -1))[3][0]])  # fast argmax
+    centroid = dot(power, frequency) / total
     wavelength = 1.0 / strongest if strongest > 0 else math.inf
-    return Texture(n_maxima, mean_height, density, wavelength, centroid, tuple(bands), roughness)
+    return Texture(
+        n_maxima, mean_height, density, wavelength, centroid, tuple(bands.tolist()), roughness
+    )
 
 
 def texture_measures(
@@ -132,7 +213,7 @@ def texture_measures(
     image : array_like, shape (rows, cols)
         Raw frame, calibrated reading or pressure map.
     sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
-        Taxel pitch [m].
+        Taxel pitch [m], or a sensor description.
     sigma : float, default 2.0
         Gaussian smoothing before the maxima are counted [taxels].
 
@@ -143,10 +224,13 @@ def texture_measures(
     Notes
     -----
     Seed, section 2.1: after Gaussian smoothing, count the local maxima (the object's high
-    points) and average their height. Both depend on the image's size and gain; the
-    maxima density and the spectral measures do not. The spectrum is that of the image's
-    ripple (mean removed, Hann window); its band fractions are in octaves of spatial
-    frequency in cycles per metre.
+    points) and average their height. Here a maximum counts when it lies in the contact
+    and rises by 4 noise sigmas above every point of the circle of radius 2 sigma around
+    it (so that a ridge is not a high point), and is curved down in every direction. Count
+    and height depend on the image's size and gain; the maxima density and the spectral
+    measures do not. The spectrum is that of the image's ripple
+    (mean removed, Hann window); its band fractions are in octaves of spatial frequency in
+    cycles per metre.
 
     Examples
     --------

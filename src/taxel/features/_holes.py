@@ -1,0 +1,173 @@
+"""Holes and slots of one image (public functions), and the seed's diameter test.
+
+The gap test itself (basins, their depth and shape) is in `taxel.features._gaps`.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import cv2
+import numpy as np
+
+from taxel.features._fitting import CircleFit, circle_fit_algebraic
+from taxel.features._gaps import HoleReport, SlotReport, gaps_core
+from taxel.features._image import Prepared, prepare
+
+__all__ = [
+    "detect_holes",
+    "detect_slots",
+    "diameter_test",
+    "outline_contours",
+    "outline_taxels",
+]
+
+# Diameters sampled by the seed's hole test and their extent beyond the fitted radius.
+_DIAMETERS = 16
+_DIAMETER_REACH = 2.0
+
+
+def diameter_test(
+    prepared: Prepared,
+    cols: np.ndarray,
+    rows: np.ndarray,
+    circle: CircleFit | None = None,
+) -> bool:
+    """The seed's hole test on a prepared image and its outline taxels (internal core).
+
+    Fits a circle to the outline (or takes `circle`, fitted to it in taxel units) and
+    walks 16 diameters of it across 2 radii each way (the fit to both rims of a washer
+    lies between them): a hole is present when some diameter crosses the contact's
+    outline 4 times, twice on each side of the fitted centre (object rim, hole rim), with
+    the centre off contact. Crossings are counted on the contact mask, which a sampled
+    line cannot slip through at a diagonal.
+    """
+    if rows.size < 8:
+        return False
+    fit = circle or circle_fit_algebraic(cols.astype(float), rows.astype(float))
+    shape = prepared.mask.shape
+    if not math.isfinite(fit.radius_m) or fit.radius_m < 2 or fit.radius_m > 2 * max(shape):
+        return False
+    centre_c, centre_r = fit.center_m
+    # one taxel per step: the contact's walls are at least 2 taxels thick after smoothing
+    steps = np.arange(-_DIAMETER_REACH * fit.radius_m, _DIAMETER_REACH * fit.radius_m, 1.0)
+    angles = np.arange(_DIAMETERS) * (math.pi / _DIAMETERS)
+    cols_at = np.rint(centre_c + np.cos(angles)[:, None] * steps).astype(int)
+    rows_at = np.rint(centre_r + np.sin(angles)[:, None] * steps).astype(int)
+    inside = (rows_at >= 0) & (rows_at < shape[0]) & (cols_at >= 0) & (cols_at < shape[1])
+    touched = np.zeros(rows_at.shape, bool)
+    touched[inside] = prepared.mask[rows_at[inside], cols_at[inside]] > 0
+    middle = steps.size // 2
+    before = np.count_nonzero(np.diff(touched[:, : middle + 1], axis=1), axis=1)
+    after = np.count_nonzero(np.diff(touched[:, middle:], axis=1), axis=1)
+    return bool(np.any((before == 2) & (after == 2) & ~touched[:, middle]))
+
+
+def outline_contours(prepared: Prepared) -> tuple[np.ndarray, ...]:
+    """The contact's outlines (outer boundaries and hole walls, every taxel; internal)."""
+    if not prepared.present:
+        return ()
+    if prepared.outlines is not None:
+        return tuple(prepared.outlines)
+    return tuple(cv2.findContours(prepared.mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)[0])
+
+
+def outline_taxels(
+    prepared: Prepared, contours: list[np.ndarray] | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """(cols, rows) of the taxels on the outlines of the contact mask (internal)."""
+    if contours is None:
+        contours, _ = cv2.findContours(prepared.mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)
+    if not contours:
+        empty = np.zeros(0, np.intp)
+        return empty, empty
+    points = np.concatenate(contours)[:, 0, :]
+    return points[:, 0], points[:, 1]
+
+
+def detect_holes(
+    image: Any, sensor_or_pitch: Any, *, smoothing: float = 1.0, defects: bool | None = None
+) -> HoleReport:
+    """Holes in the contact, by the gap test and by the seed's diameter test.
+
+    Parameters
+    ----------
+    image : array_like, shape (rows, cols)
+        Raw frame, calibrated reading or pressure map.
+    sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
+        Taxel pitch [m], or a sensor description.
+    smoothing : float, default 1.0
+        Gaussian sigma [taxels].
+    defects : bool, optional
+        Remove defects narrower than 3 taxels first (see `prepare`).
+
+    Returns
+    -------
+    HoleReport
+
+    Notes
+    -----
+    Gap test (decides `present`): a basin of the smoothed image enclosed by contact (it
+    does not reach the array's border) is a hole when its bottom lies below half the
+    level of the contact around it (the object has no material there), and, measured at
+    that half level, it is at least one taxel in inradius and round (axes within 2:1, area
+    at most 1.9 times its inscribed disk). Its radius is that of the disk of its area at
+    the half level. A hole cut by the array's border is not reported.
+
+    Diameter test (the seed's, reported as `diameter_test`): fit a circle to the contact's
+    outline; a hole exists if a diameter of it crosses the outline four times. It assumes
+    a round object (a washer) and says no for a hole in a plate larger than the array.
+
+    Examples
+    --------
+    >>> y, x = np.mgrid[:64, :64] - 31.5
+    >>> washer = ((np.hypot(x, y) < 24) & (np.hypot(x, y) > 10)).astype(float)
+    >>> report = detect_holes(washer, 0.5e-3)
+    >>> report.count, report.diameter_test, round(report.items[0].radius_m * 1e3, 1)
+    (1, True, 5.0)
+    """
+    prepared = prepare(image, sensor_or_pitch, smoothing=smoothing, defects=defects)
+    holes, _, _ = gaps_core(prepared)
+    test = diameter_test(prepared, *outline_taxels(prepared))
+    return HoleReport(bool(holes), len(holes), tuple(holes), test)
+
+
+def detect_slots(
+    image: Any, sensor_or_pitch: Any, *, smoothing: float = 1.0, defects: bool | None = None
+) -> SlotReport:
+    """Slots in the contact: long gaps with parallel walls.
+
+    Parameters
+    ----------
+    image : array_like, shape (rows, cols)
+        Raw frame, calibrated reading or pressure map.
+    sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
+        Taxel pitch [m], or a sensor description.
+    smoothing : float, default 1.0
+        Gaussian sigma [taxels].
+    defects : bool, optional
+        Remove defects narrower than 3 taxels first (see `prepare`).
+
+    Returns
+    -------
+    SlotReport
+
+    Notes
+    -----
+    A basin deeper than half its surroundings (see `detect_holes`) is a slot when it is
+    at least 2.5 times as long as wide, its walls are parallel (area at least 0.6 of
+    length times its widest span) and, if it reaches the array's border, it does so only
+    at its ends. Length is sqrt(12) times the standard deviation along the long axis
+    (exact for a rectangle); width is area over length, both at half the surrounding level.
+
+    Examples
+    --------
+    >>> plate = np.ones((64, 64)); plate[28:36, 8:56] = 0.0  # 8 x 48 taxel slot
+    >>> slot = detect_slots(plate, 1e-3).items[0]
+    >>> round(slot.width_m * 1e3), round(slot.length_m * 1e3), round(float(slot.angle_rad), 3)
+    (8, 48, 0.0)
+    """
+    prepared = prepare(image, sensor_or_pitch, smoothing=smoothing, defects=defects)
+    _, slots, _ = gaps_core(prepared)
+    return SlotReport(bool(slots), len(slots), tuple(slots))

@@ -1,0 +1,117 @@
+"""Measures of the main contact region that the contact type is decided from (internal)."""
+
+from __future__ import annotations
+
+import math
+
+import cv2
+import numpy as np
+
+from taxel.features._contact import Contact, region_moments
+from taxel.features._fitting import CircleFit, LineFit, fit_line_and_circle
+from taxel.features._image import Prepared
+from taxel.features._outline import lobes
+
+__all__ = [
+    "band_fits",
+    "half_region",
+    "region_measures",
+    "three_lobes",
+    "to_metres_circle",
+    "to_metres_line",
+]
+
+# A saturated image is flat-topped: its top 10 % covers at least a third of its
+# half-maximum area (a Gaussian's covers 15 %, a blurred dome's ~20-25 %).
+_FLAT_TOP = 1.0 / 3.0
+
+
+def _main_region(prepared: Prepared, contact: Contact) -> np.ndarray:
+    """The mask (uint8) of the largest region."""
+    if prepared.n_regions == 1:
+        return prepared.mask
+    counts = np.bincount(prepared.labels.ravel(), minlength=prepared.n_regions + 1)
+    counts[0] = 0
+    return (prepared.labels == int(np.argmax(counts))).view(np.uint8)
+
+
+def half_region(prepared: Prepared, main: np.ndarray) -> tuple[np.ndarray, float, bool]:
+    """The main region above half its peak, its major axis [taxels], and if it is flat-topped.
+
+    The region is taken on the unsmoothed image at half its own peak, so that the
+    smoothing does not widen it; flatness is judged on the smoothed image, against noise.
+    """
+    peak = cv2.minMaxLoc(prepared.image, main)[1]
+    region = (prepared.image >= 0.5 * (prepared.baseline + peak)).view(np.uint8) & main
+    span = cv2.minMaxLoc(prepared.smooth, main)[1] - prepared.baseline
+    moments = cv2.moments(region, binaryImage=True)
+    count = moments["m00"]
+    if count == 0:
+        return region, 0.0, False
+    half_area = cv2.countNonZero(
+        (prepared.smooth >= prepared.baseline + 0.5 * span).view(np.uint8) & main
+    )
+    top_area = cv2.countNonZero(
+        (prepared.smooth >= prepared.baseline + 0.9 * span).view(np.uint8) & main
+    )
+    var_y, var_x = moments["mu02"] / count + 1 / 12, moments["mu20"] / count + 1 / 12
+    root = math.hypot((var_x - var_y) / 2, moments["mu11"] / count)
+    flat = top_area >= _FLAT_TOP * max(half_area, 1)
+    return region, 4.0 * math.sqrt((var_x + var_y) / 2 + root), flat
+
+
+def band_fits(prepared: Prepared, main: np.ndarray) -> tuple[LineFit, CircleFit, float]:
+    """Weighted centre line and circle of a band (taxel units), and its length [taxels]."""
+    rows, cols = np.nonzero(main)
+    weight = np.maximum(prepared.smooth[rows, cols] - np.float32(prepared.baseline), 1e-12)
+    x, y = cols.astype(float), rows.astype(float)
+    line, circle = fit_line_and_circle(x, y, weight.astype(float))
+    along = math.cos(line.angle_rad) * x + math.sin(line.angle_rad) * y
+    return line, circle, float(along.max() - along.min()) + 1.0
+
+
+def to_metres_line(fit: LineFit, prepared: Prepared) -> LineFit:
+    """A line fitted in taxel indices, in the sensor frame [m] (square taxels assumed)."""
+    rows, cols = prepared.image.shape
+    pitch = prepared.mean_pitch
+    cx, cy = (cols - 1) / 2, (rows - 1) / 2
+    offset = fit.offset_m + math.sin(fit.angle_rad) * cx - math.cos(fit.angle_rad) * cy
+    return LineFit(fit.angle_rad, offset * pitch, fit.rms_m * pitch, fit.n_points)
+
+
+def to_metres_circle(fit: CircleFit, prepared: Prepared) -> CircleFit:
+    rows, cols = prepared.image.shape
+    pitch = prepared.mean_pitch
+    if not math.isfinite(fit.radius_m):
+        return fit
+    centre = (
+        (fit.center_m[0] - (cols - 1) / 2) * pitch,
+        (fit.center_m[1] - (rows - 1) / 2) * pitch,
+    )
+    return CircleFit(centre, fit.radius_m * pitch, fit.rms_m * pitch, fit.n_points)
+
+
+def region_measures(
+    prepared: Prepared, contact: Contact
+) -> tuple[np.ndarray, float, float, float]:
+    """Main region mask, its thickness and area [taxels], and its concentration."""
+    main = _main_region(prepared, contact)
+    left, top, width, height = cv2.boundingRect(main)
+    box = main[max(top - 1, 0) : top + height + 1, max(left - 1, 0) : left + width + 1]
+    inscribed = cv2.minMaxLoc(cv2.distanceTransform(box, cv2.DIST_L2, 3))[1]
+    thickness = 2.0 * float(inscribed) + 1.0  # [taxels]; +1: taxel centres, not edges
+    binary, weighted = region_moments(prepared, main)
+    spread = (binary["mu20"] + binary["mu02"]) / max(binary["m00"], 1e-30)
+    concentration = (weighted["mu20"] + weighted["mu02"]) / max(weighted["m00"], 1e-30)
+    concentration = concentration / spread if spread > 0 else 0.0
+    return main, thickness, float(binary["m00"]), float(concentration)
+
+
+def three_lobes(prepared: Prepared, half: np.ndarray) -> float:
+    """3rd harmonic of the outline of the main region above half its peak."""
+    outlines, _ = cv2.findContours(half, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_NONE)
+    if not outlines:
+        return 0.0
+    moments = cv2.moments(half, binaryImage=True)
+    centre = (moments["m10"] / moments["m00"], moments["m01"] / moments["m00"])
+    return lobes(max(outlines, key=len), centre, 3)

@@ -1,0 +1,117 @@
+"""The features on frames of the sensor simulator, one per kind of indenter, known answers."""
+
+import math
+
+import numpy as np
+import pytest
+
+from taxel.features import extract
+from taxel.frames import make_pose
+from taxel.mechanics import make_indenter
+from taxel.sensor import make_sensor
+
+
+@pytest.fixture(scope="module")
+def vhdta():
+    return make_sensor("vhdta128")
+
+
+def _press(sensor, name, force, position=(0.0, 0.0), angle=0.0, **parameters):
+    indenter = make_indenter(name, **parameters)
+    return sensor.press(indenter, normal_force=force, position=position, angle=angle, rng=0)
+
+
+def _pressure_centroid(sensor, frame):
+    x, y = sensor.load_grid.coordinates()
+    pressure = frame.contact.pressure
+    return np.array([(pressure * x).sum(), (pressure * y).sum()]) / pressure.sum()
+
+
+@pytest.mark.parametrize(
+    ("name", "force", "parameters", "expected"),
+    [
+        ("pen", 1.0, {}, "point"),
+        ("sphere", 5.0, {}, "surface"),  # a 12.5 mm sphere at 5 N: a 5 mm contact
+        ("punch", 5.0, {}, "surface"),
+        ("edge", 5.0, {}, "line"),
+        ("cylinder", 5.0, {}, "line"),
+        ("box-edge", 5.0, {}, "line"),
+        ("box-corner", 5.0, {}, "corner"),  # a 3.3 mm rounded triangle: three lobes
+    ],
+)
+def test_contact_type_of_simulated_frames(vhdta, name, force, parameters, expected):
+    frame = _press(vhdta, name, force, position=(1e-3, -2e-3), angle=0.4, **parameters)
+    features = extract(frame.raw, vhdta)
+    assert features.contact_type == expected
+    assert not features.holes.present and not features.slots.present
+    # the centre of pressure within half a taxel of the force-weighted centroid
+    error = np.linalg.norm(
+        np.array(features.contact.centroid_m) - _pressure_centroid(vhdta, frame)
+    )
+    assert error < 0.5 * vhdta.taxel_pitch[0]
+
+
+def test_edge_direction_within_two_degrees(vhdta):
+    angle = 0.7
+    frame = _press(vhdta, "box-edge", 10.0, position=(2e-3, 1e-3), angle=angle)
+    line = extract(frame.raw, vhdta).shape.line
+    error = abs((line.angle_rad - angle + math.pi / 2) % math.pi - math.pi / 2)
+    assert math.degrees(error) < 0.5
+
+
+def test_can_rim_is_an_arc_of_its_radius(vhdta):
+    radius = 26e-3
+    frame = _press(vhdta, "can", 10.0, position=(0.0, -radius - 2e-3), rim_radius=radius)
+    features = extract(frame.raw, vhdta)
+    assert features.contact_type == "arc"
+    assert features.shape.circle.radius_m == pytest.approx(radius, rel=0.03)
+
+
+def test_washer_hole_and_its_radius(vhdta):
+    frame = _press(vhdta, "washer", 20.0, position=(2e-3, 0.0))
+    features = extract(frame.raw, vhdta)
+    assert features.contact_type == "surface"
+    assert features.holes.count == 1 and features.holes.diameter_test
+    hole = features.holes.items[0]
+    assert hole.center_m == pytest.approx((2e-3, 0.0), abs=0.3e-3)
+    assert hole.radius_m == pytest.approx(4.2e-3 + 0.2e-3, rel=0.15)  # the hole's flat rim
+
+
+def test_plate_with_hole_and_plate_with_slot(vhdta):
+    holed = extract(_press(vhdta, "hole", 100.0, position=(-3e-3, 4e-3)).raw, vhdta)
+    assert holed.contact_type == "surface" and holed.holes.count == 1
+    assert not holed.slots.present
+    assert holed.holes.items[0].center_m == pytest.approx((-3e-3, 4e-3), abs=0.3e-3)
+    slotted = extract(_press(vhdta, "slot", 100.0, angle=0.3).raw, vhdta)
+    assert slotted.contact_type == "surface" and slotted.slots.count == 1
+    assert not slotted.holes.present
+    slot = slotted.slots.items[0]
+    assert math.degrees(abs(slot.angle_rad - 0.3)) < 2.0
+    assert slot.width_m == pytest.approx(3e-3, rel=0.25)
+    assert slot.length_m == pytest.approx(15e-3, rel=0.15)
+
+
+def test_rasp_is_a_texture(vhdta):
+    features = extract(_press(vhdta, "rasp", 40.0).raw, vhdta)
+    assert features.contact_type == "surface"
+    assert features.shape.rule == "many high points (texture)"
+    assert features.texture.maxima_count >= 10
+    assert not features.holes.present
+
+
+def test_position_in_the_base_frame(vhdta):
+    frame = _press(vhdta, "pen", 1.0, position=(4e-3, -6e-3))
+    pose = make_pose(None, (0.1, 0.2, 0.3))
+    features = extract(frame.raw, vhdta, pose=pose)
+    expected = np.array([0.1, 0.2, 0.3]) + np.append(_pressure_centroid(vhdta, frame), 0.0)
+    assert np.linalg.norm(np.array(features.pose.position_base_m) - expected) < 0.1e-3
+
+
+def test_sixteen_by_sixteen_pen_and_edge():
+    sensor = make_sensor("resistive16")
+    pen = extract(_press(sensor, "pen", 2.0, position=(3e-3, 3e-3)).raw, sensor)
+    assert pen.contact_type == "point"
+    edge = extract(_press(sensor, "edge", 20.0, angle=0.5).raw, sensor)
+    assert edge.contact_type == "line"
+    error = abs((edge.shape.line.angle_rad - 0.5 + math.pi / 2) % math.pi - math.pi / 2)
+    assert math.degrees(error) < 3.0
