@@ -14,7 +14,15 @@ __all__ = ["CommandLineError", "main"]
 EXIT_USAGE = 2
 
 # each subcommand module (taxel/cli/_NAME.py) exposes register(commands)
-_SUBCOMMANDS = ("_demo", "_design", "_features", "_reconstruct", "_simulate", "_texture")
+_SUBCOMMANDS = (
+    "_active",
+    "_demo",
+    "_design",
+    "_features",
+    "_reconstruct",
+    "_simulate",
+    "_texture",
+)
 
 
 class CommandLineError(Exception):
@@ -63,6 +71,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 0
     try:
         return handler(arguments)
+    except BrokenPipeError:  # the reader closed the pipe (| head): stop quietly
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
     except (CommandLineError, ValueError, TypeError, OSError) as error:
         message = str(error).splitlines()[0] if str(error) else type(error).__name__
         sys.stderr.write(f"taxel {arguments.command}: error: {message}\n")
