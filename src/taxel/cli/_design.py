@@ -12,6 +12,8 @@ import math
 import sys
 from typing import Any
 
+from taxel.cli._arguments import seed
+
 __all__ = ["register"]
 
 
@@ -103,16 +105,6 @@ def _run(arguments: argparse.Namespace) -> int:
     return 0
 
 
-def _seed(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be >= 0, got {text}")
-    return value
-
-
 def register(commands: Any) -> None:
     """Add the ``design`` subcommand to the ``taxel`` parser's subcommands.
 
@@ -133,6 +125,6 @@ def register(commands: Any) -> None:
     parser.add_argument("preset", metavar="PRESET", help="sensor preset")
     parser.add_argument("--json", action="store_true", help="print JSON (SI units)")
     parser.add_argument(
-        "--seed", type=_seed, default=0, metavar="N", help="noise seed of the measurements (0)"
+        "--seed", type=seed, default=0, metavar="N", help="noise seed of the measurements (0)"
     )
     parser.set_defaults(handler=_run)

@@ -11,13 +11,13 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
-import math
 import sys
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from taxel.cli._arguments import finite, integer_in, positive, seed
 from taxel.cli._main import CommandLineError
 
 __all__ = ["register"]
@@ -133,46 +133,6 @@ def _run(arguments: argparse.Namespace) -> int:
     return 0
 
 
-def _positive(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
-    if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"must be > 0, got {text}")
-    return value
-
-
-def _finite(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"must be finite, got {text}")
-    return value
-
-
-def _count(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
-    if not 1 <= value <= 16:
-        raise argparse.ArgumentTypeError(f"must lie in 1..16, got {text}")
-    return value
-
-
-def _seed(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be >= 0, got {text}")
-    return value
-
-
 def register(commands: Any) -> None:
     """Add the ``simulate`` subcommand to the ``taxel`` parser's subcommands.
 
@@ -194,25 +154,25 @@ def register(commands: Any) -> None:
     parser.add_argument("--sensor", required=True, metavar="PRESET", help="sensor preset")
     parser.add_argument("--object", required=True, metavar="NAME", help="indenter name")
     parser.add_argument(
-        "--force", required=True, type=_positive, metavar="NEWTONS", help="normal force [N]"
+        "--force", required=True, type=positive, metavar="NEWTONS", help="normal force [N]"
     )
     parser.add_argument(
         "--x",
-        type=_finite,
+        type=finite,
         metavar="M",
         help="x of the object's origin in the sensor frame [m] (0; the can: minus its "
         "rim radius, so the rim crosses the middle)",
     )
-    parser.add_argument("--y", type=_finite, metavar="M", help="y of the object's origin [m] (0)")
+    parser.add_argument("--y", type=finite, metavar="M", help="y of the object's origin [m] (0)")
     parser.add_argument(
-        "--angle", type=_finite, default=0.0, metavar="RAD", help="rotation about z [rad] (0)"
+        "--angle", type=finite, default=0.0, metavar="RAD", help="rotation about z [rad] (0)"
     )
     parser.add_argument(
-        "--seed", type=_seed, metavar="N", help="switch the sensor's noise on, reproducibly"
+        "--seed", type=seed, metavar="N", help="switch the sensor's noise on, reproducibly"
     )
     parser.add_argument(
         "--oversampling",
-        type=_count,
+        type=integer_in(1, 16),
         metavar="K",
         help="solve the contact on K x K cells per taxel (the preset's, usually 1); "
         "finer grids resolve small objects such as the can's 1 mm lip",

@@ -24,6 +24,7 @@ from taxel.active import (
     texture_features,
     texture_signature,
 )
+from taxel.cli._arguments import integer_in, positive, real_in
 from taxel.io import list_fabricslide_files, parse_fabricslide_name, read_fabricslide
 
 __all__ = ["register"]
@@ -79,27 +80,6 @@ def _classify(arguments: argparse.Namespace) -> int:
     return 0
 
 
-def _fraction(text: str) -> float:
-    value = float(text)
-    if not 0 <= value <= 0.45:
-        raise argparse.ArgumentTypeError(f"must lie in [0, 0.45], got {text}")
-    return value
-
-
-def _positive(text: str) -> float:
-    value = float(text)
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"must be > 0, got {text}")
-    return value
-
-
-def _count(text: str) -> int:
-    value = int(text)
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be >= 1, got {text}")
-    return value
-
-
 def register(commands: Any) -> None:
     """Add the ``texture`` command and its ``fit`` and ``classify`` subcommands.
 
@@ -124,18 +104,18 @@ def register(commands: Any) -> None:
     fit.add_argument("--out", required=True, metavar="MODEL.json", help="model file to write")
     fit.add_argument("--force", action="store_true", help="overwrite an existing model file")
     fit.add_argument(
-        "--neighbors", type=_count, default=1, metavar="K", help="neighbours that vote (1)"
+        "--neighbors", type=integer_in(1), default=1, metavar="K", help="neighbours that vote (1)"
     )
     fit.add_argument(
         "--segment-length",
-        type=_positive,
+        type=positive,
         default=0.2,
         metavar="METRES",
         help="travel per spectral segment [m] (0.2)",
     )
     fit.add_argument(
         "--trim-fraction",
-        type=_fraction,
+        type=real_in(0.0, 0.45),
         default=0.1,
         metavar="FRACTION",
         help="fraction of each recording dropped at each end (0.1)",

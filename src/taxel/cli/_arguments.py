@@ -1,0 +1,69 @@
+"""Argument types shared by the subcommands: argparse turns their errors into one line."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from collections.abc import Callable
+
+__all__ = ["finite", "integer_in", "positive", "real_in", "seed"]
+
+
+def _number(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
+
+
+def _integer(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
+
+
+def finite(text: str) -> float:
+    """A finite real number."""
+    value = _number(text)
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be finite, got {text}")
+    return value
+
+
+def positive(text: str) -> float:
+    """A finite number > 0."""
+    value = _number(text)
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"must be > 0, got {text}")
+    return value
+
+
+def real_in(low: float, high: float) -> Callable[[str], float]:
+    """A number in [low, high]."""
+
+    def parse(text: str) -> float:
+        value = _number(text)
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"must lie in [{low:g}, {high:g}], got {text}")
+        return value
+
+    return parse
+
+
+def integer_in(low: int, high: int | None = None) -> Callable[[str], int]:
+    """An integer >= low (and <= high when given)."""
+
+    def parse(text: str) -> int:
+        value = _integer(text)
+        if value < low or (high is not None and value > high):
+            bound = f"be >= {low}" if high is None else f"lie in {low}..{high}"
+            raise argparse.ArgumentTypeError(f"must {bound}, got {text}")
+        return value
+
+    return parse
+
+
+def seed(text: str) -> int:
+    """A random seed: an integer >= 0."""
+    return integer_in(0)(text)
