@@ -7,45 +7,14 @@ import numpy as np
 from taxel.report._context import DemoContext
 from taxel.report._figures import figure_png, new_figure
 from taxel.report._model import Experiment, Figure, Table, Verdict
-from taxel.sensor import HarmonRow, harmon_table
+from taxel.sensor import harmon_table
 
 __all__ = ["harmon_criteria"]
-
-_SCALE = {
-    "m": (1e3, "mm"),
-    "N": (1e3, "mN"),
-    "s": (1e3, "ms"),
-    "-": (1.0, ""),
-    "1/m^2": (1e-4, "/cm^2"),
-    "Pa": (1e-6, "MPa"),
-}
-
-
-def _format(value: float | None, unit: str) -> str:
-    if value is None:
-        return "-"
-    factor, shown = _SCALE.get(unit, (1.0, unit))
-    return f"{value * factor:.3g} {shown}".strip()
-
-
-def _target(row: HarmonRow) -> str:
-    low, high = row.target
-    factor, shown = _SCALE.get(row.unit, (1.0, row.unit))
-    if low is not None and high is not None:
-        return f"{low * factor:.3g}-{high * factor:.3g} {shown}".strip()
-    if low is not None:
-        return f">= {low * factor:.3g} {shown}".strip()
-    if high is not None:
-        return f"<= {high * factor:.3g} {shown}".strip()
-    return "-"
 
 
 def _rows(table) -> list[tuple[str, str, str, str]]:
     verdict = {True: "pass", False: "FAIL", None: "info"}
-    return [
-        (row.criterion, _format(row.value, row.unit), _target(row), verdict[row.passed])
-        for row in table.rows
-    ]
+    return [(row.criterion, *row.display(), verdict[row.passed]) for row in table.rows]
 
 
 def _resolution_figure(tables: dict) -> Figure:
@@ -109,8 +78,7 @@ def harmon_criteria(
             Verdict(
                 "two points are resolved at about the cover depth d (0.5 d to 2 d), "
                 "not at the taxel pitch",
-                f"{_format(resolution.value, resolution.unit)} = "
-                f"{(resolution.value or 0) / depth:.2f} d",
+                f"{resolution.display()[0]} = " f"{(resolution.value or 0) / depth:.2f} d",
                 f"d = {depth * 1e3:g} mm, pitch {first.taxel_pitch[0] * 1e3:.3f} mm",
                 resolution.value is not None and 0.5 <= resolution.value / depth <= 2.0,
             ),

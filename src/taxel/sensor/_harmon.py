@@ -66,6 +66,12 @@ class HarmonRow:
     passed: bool | None
     method: str
 
+    def display(self) -> tuple[str, str]:
+        """(measured, target) in display units, e.g. ("1.16 mm", "1-2 mm")."""
+        from taxel.sensor._harmon_display import display_cells
+
+        return display_cells(self)
+
     def to_dict(self) -> dict[str, Any]:
         """The row as plain JSON types (SI units)."""
         return {
