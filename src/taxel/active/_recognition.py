@@ -41,7 +41,7 @@ def touch_descriptor(touches: Sequence[np.ndarray]) -> np.ndarray:
     --------
     >>> from taxel.active._touch_features import touch_vector
     >>> descriptor = touch_descriptor([touch_vector(None)] * 3)
-    >>> descriptor.shape, descriptor[0]
+    >>> descriptor.shape, float(descriptor[0])
     ((39,), 0.0)
     """
     n = len(TOUCH_FEATURES)
