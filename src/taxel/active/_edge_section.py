@@ -35,6 +35,7 @@ _SAMPLES_PER_TAXEL = 4
 _REFINEMENTS = 3
 _MARGIN = 1.5  # taxels kept clear of the image border when sampling
 _ARC_HEIGHT = 1.0e-3  # length scale of the normalised intensity in the arc fit [m]
+_COVERED = 0.8  # share of the fitted line that must be in contact for a straight edge
 
 
 @dataclass(frozen=True)
@@ -250,6 +251,14 @@ def edge_cross_section(
         raise ValueError(
             "`image` shows no straight edge across the sensor: the fitted line crosses "
             f"{chord * 1e3:.1f} mm of the active area"
+        )
+    # an edge presses all along its chord; a ball or a corner only in part of it
+    line_peaks = values.max(axis=1) - baseline
+    covered = float(np.mean(line_peaks > 0.5 * line_peaks.max()))
+    if covered < _COVERED:
+        raise ValueError(
+            "`image` shows no straight edge across the sensor: contact covers "
+            f"{covered:.0%} of the fitted line"
         )
     mean = values.mean(axis=0)
     quarter = max(across.size // 8, 2)
