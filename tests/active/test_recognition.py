@@ -53,7 +53,7 @@ def test_models_at_random_poses_are_recognised(library, name, seed):
     result = recognize_object(name, library=library, rng=seed)
     assert result.name == name
     assert result.n_touches == 3
-    assert [c[0] for c in result.candidates][0] == name
+    assert result.candidates[0][0] == name
     assert sum(c[1] for c in result.candidates) == pytest.approx(1.0)
     assert result.score > 0.5
     json.dumps(result.to_dict())
