@@ -45,6 +45,7 @@ DEFAULT_FORCES = (12.0, 39.0)  # the seed's light and heavy presses [N]
 _DOWN = np.diag([1.0, -1.0, -1.0])  # the sensor facing the table
 _EDGE_TOP = 0.02  # height of the edge objects' crest above the table [m]
 _STANDOFF = 5e-3  # approach height of the sensor above the crest [m]
+OFFSET = 4e-3
 
 
 def make_edge(
@@ -264,7 +265,7 @@ def build_edge_radius_table(
     orientations : int, default 4
         Edge angles per radius, evenly spaced from 0 to 45 degrees to the sensor's x axis
         (the line load then spans the sensor's side to its diagonal), each at a random
-        offset of up to 2 mm from the sensor's centre.
+        offset of up to 4 mm from the sensor's centre.
     rng : numpy.random.Generator or int, optional
         Noise of the frames and the offsets (default seed 0; None: noise-free frames).
     path : path, optional
@@ -293,7 +294,7 @@ def build_edge_radius_table(
     pairs, pair_radii = [], []
     for radius in radii:
         for angle in np.linspace(0.0, np.pi / 4, int(orientations)):
-            position = tuple(offsets.uniform(-2e-3, 2e-3, 2))
+            position = tuple(offsets.uniform(-OFFSET, OFFSET, 2))
             edge = make_edge(radius, position=position, angle=float(angle))
             finger = _finger_over(chosen, edge, generator)
             sections = []

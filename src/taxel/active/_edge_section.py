@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy import ndimage
+from scipy import ndimage, stats
 
 from taxel._validation import as_finite_array, check_positive
 from taxel.features import detect_edges, fit_circle, fit_line, pitch_pair
@@ -35,6 +35,8 @@ _SAMPLES_PER_TAXEL = 4
 _REFINEMENTS = 3
 _MARGIN = 1.5  # taxels kept clear of the image border when sampling
 _ARC_HEIGHT = 1.0e-3  # length scale of the normalised intensity in the arc fit [m]
+_END_MARGIN = 3e-3  # the profile is averaged this far inside the ends of the edge's chord [m]
+_TRIM = 0.2  # fraction cut from each end before averaging the lines
 _COVERED = 0.8  # share of the fitted line that must be in contact for a straight edge
 
 
@@ -124,6 +126,15 @@ def _sample(
         & (row >= _MARGIN)
         & (row <= rows - 1 - _MARGIN)
     ).all(axis=1)
+    # keep clear of where the edge leaves the pad: the load is not uniform there
+    centre_col, centre_row = col[:, col.shape[1] // 2], row[:, row.shape[1] // 2]
+    clear = _END_MARGIN / min(pitch)
+    inside &= (
+        (centre_col >= clear)
+        & (centre_col <= cols - 1 - clear)
+        & (centre_row >= clear)
+        & (centre_row <= rows - 1 - clear)
+    )
     if not inside.any():
         return np.zeros((0, across.size)), along[:0]
     values = ndimage.map_coordinates(
@@ -194,8 +205,10 @@ def edge_cross_section(
     2. The line is refined three times by fitting a line to the intensity centres of the
        image sampled normal to it (robust to stray edges such as glass scratches).
     3. The image is sampled (bilinear) on lines normal to the edge, one taxel apart along
-       it and a quarter taxel apart across it, and averaged: the cross-section. The
-       baseline is the median of the profile's outer quarter on either side.
+       it (keeping 3 mm clear of where the edge leaves the pad) and a quarter taxel apart
+       across it, and averaged with a 20 % trimmed mean (glass scratches crossing the
+       edge touch few lines): the cross-section. The baseline is the median of the
+       profile's outer eighth on either side.
     4. Descriptors: the area under the profile, its peak, its widths at 25, 50 and 75 % of
        the peak, and the radius of a circle fitted (`fit_circle`) to its top half, the
        intensity scaled to a height of 1 mm at the peak.
@@ -260,7 +273,8 @@ def edge_cross_section(
             "`image` shows no straight edge across the sensor: contact covers "
             f"{covered:.0%} of the fitted line"
         )
-    mean = values.mean(axis=0)
+    # a trimmed mean along the edge: glass scratches crossing it touch few of the lines
+    mean = stats.trim_mean(values, _TRIM, axis=0)
     quarter = max(across.size // 8, 2)
     baseline = float(np.median(np.concatenate((mean[:quarter], mean[-quarter:]))))
     profile = mean - baseline

@@ -30,8 +30,22 @@ __all__ = ["EdgeRadiusTable", "fit_edge_radius_table"]
 
 _FORMAT = "taxel.edge_radius_table"
 _VERSION = 1
+_DEGREE = 3  # of the polynomial in ln(radius) through the table's radii
 _GRID = 2001  # points of the log-radius grid searched between the table's ends
 _FLOOR = 1e-3  # smallest descriptor spread, as a fraction of the descriptor's range
+
+
+def _smooth(log_radii: np.ndarray, values: np.ndarray, grid: np.ndarray) -> np.ndarray:
+    """Descriptors between the table's radii: a least-squares cubic in ln(radius).
+
+    With fewer radii than the cubic needs, a monotone cubic (PCHIP) through them.
+    """
+    if log_radii.size <= _DEGREE + 1:
+        return PchipInterpolator(log_radii, values, axis=0)(grid)
+    centre, half = log_radii.mean(), max(np.ptp(log_radii) / 2, 1e-12)
+    basis = np.polynomial.legendre.legvander((log_radii - centre) / half, _DEGREE)
+    coefficients, *_ = np.linalg.lstsq(basis, values, rcond=None)
+    return np.polynomial.legendre.legvander((grid - centre) / half, _DEGREE) @ coefficients
 
 
 @dataclass(frozen=True, eq=False)
@@ -128,9 +142,11 @@ class EdgeRadiusTable:
     def estimate(self, sections: Sequence[EdgeCrossSection]) -> tuple[float, float, float]:
         """Interpolated radius [m], its standard uncertainty [m] and the residual.
 
-        Each descriptor is interpolated between the table's radii by a monotone cubic
-        (PCHIP) in ln(radius); the estimate minimises the mean squared standardised
-        difference (the residual) over ln(radius) between the smallest and largest radius.
+        Each descriptor is carried between the table's radii by a least-squares cubic in
+        ln(radius) (a monotone PCHIP through them when the table has four radii or
+        fewer), which smooths the noise of single entries; the estimate minimises the mean
+        squared standardised difference (the residual) over ln(radius) between the
+        smallest and largest radius.
         The uncertainty is the change of radius that raises the summed squared difference by
         one, from the curvature at the minimum.
         """
@@ -138,9 +154,8 @@ class EdgeRadiusTable:
         predicted = self.predict(loads)
         log_radii = np.log(self.radii)
         flat = predicted.reshape(self.radii.size, -1)
-        spline = PchipInterpolator(log_radii, flat, axis=0)
         grid = np.linspace(log_radii[0], log_radii[-1], _GRID)
-        standardised = (spline(grid) - measured.ravel()) / self.spreads.ravel()
+        standardised = (_smooth(log_radii, flat, grid) - measured.ravel()) / self.spreads.ravel()
         total = (standardised**2).sum(axis=1)
         best = int(np.argmin(total))
         log_radius = float(grid[best])
