@@ -359,6 +359,10 @@ def measure_deformation(
     touch_force: float = 0.5,
     calibration: PadCalibration | str | os.PathLike[str] | None = None,
     rng: Any = None,
+    shape: str | None = None,
+    size: float | None = None,
+    youngs_modulus: float | None = None,
+    poisson_ratio: float | None = None,
 ) -> DeformationResult:
     """Simulate the touch, light and firm press on an object and judge its deformation.
 
@@ -378,6 +382,9 @@ def measure_deformation(
         (`calibrate_pad`, about 20 s, then kept for the session).
     rng : numpy.random.Generator or int, optional
         Sensor noise (None: noise-free frames).
+    shape, size, youngs_modulus, poisson_ratio : optional
+        With a name, build the object from these (see `make_deformation_object`): any
+        ball or cube, named or not.
 
     Returns
     -------
@@ -398,14 +405,27 @@ def measure_deformation(
             f"got {list(forces)}"
         )
     if calibration is None:
-        calibration = _default_calibration(chosen.name, (touch, light, firm))
+        calibration = (
+            _default_calibration(sensor, (touch, light, firm))
+            if isinstance(sensor, str)
+            else calibrate_pad(chosen, forces=(touch, light, firm))
+        )
     procedure = Deformation(calibration)
     if not np.allclose(procedure.calibration.forces[-3:], [touch, light, firm], rtol=1e-3):
         raise ValueError(
             f"`calibration` holds forces {procedure.calibration.forces.tolist()} N, not "
             f"the touch and presses {[touch, light, firm]} N"
         )
-    target = make_deformation_object(item) if isinstance(item, str) else item
+    if isinstance(item, str):
+        target: SceneObject = make_deformation_object(
+            item,
+            shape=shape,
+            size=size,
+            youngs_modulus=youngs_modulus,
+            poisson_ratio=poisson_ratio,
+        )
+    else:
+        target = item
     above = make_pose(_DOWN, [0.0, 0.0, _top_height(target) + _STANDOFF])
     finger = SimulatedFinger(chosen, [target], above, rng=rng)
     return procedure.run(finger)

@@ -349,7 +349,11 @@ def measure_edge_radius(
     """
     chosen = _sensor(sensor)
     if table is None:
-        table = _default_table(chosen.name, DEFAULT_FORCES)
+        table = (
+            _default_table(sensor, DEFAULT_FORCES)
+            if isinstance(sensor, str)
+            else build_edge_radius_table(sensor=chosen)
+        )
     procedure = EdgeRadius(table)
     edge = make_edge(radius, position=position, angle=angle)
     return procedure.run(_finger_over(chosen, edge, rng))

@@ -159,7 +159,10 @@ def recognize_object(
     position_error = check_positive("position_error", position_error, allow_zero=True)
     chosen = _sensor(sensor)
     if library is None:
-        library = _default_library(chosen.name)
+        if isinstance(sensor, str):
+            library = _default_library(sensor)
+        else:
+            library = build_model_library(sensor=chosen)
     procedure = Recognition(library)
     generator = np.random.default_rng(rng)
     if position is None:
