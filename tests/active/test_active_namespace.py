@@ -35,6 +35,7 @@ def test_public_names():
         "build_edge_radius_table",
         "build_model_library",
         "calibrate_pad",
+        "core_area",
         "cross_validate_texture",
         "describe_models",
         "edge_cross_section",

@@ -74,7 +74,9 @@ def test_acrylic_sphere_is_rigid(calibration):
     assert result.travels[2] - result.travels[1] == pytest.approx(0.38e-3, abs=0.02e-3)
     assert abs(result.height_change) < 0.05e-3
     assert result.heights[1] == pytest.approx(12.5e-3, abs=0.05e-3)
-    assert result.to_dict()["stiffness_n_per_m"] is None or result.stiffness > 1e6
+    # what is left of the travel after the pad's compression is a small fraction of it
+    assert result.deformability < 0.3
+    assert result.stiffness > 100 * 27.0 / 4.8e-3
 
 
 @pytest.mark.parametrize(

@@ -23,7 +23,7 @@ build_edge_radius_table, DEFAULT_EDGE_RADII
 Deformation and stiffness (touch, light and firm press)
 -------------------------------------------------------
 Deformation, DeformationResult, measure_deformation, make_deformation_object,
-DEFORMATION_OBJECTS, make_block, PadCalibration, calibrate_pad
+DEFORMATION_OBJECTS, make_block, PadCalibration, calibrate_pad, core_area
 
 Recognition against a library of object models (up to three touches)
 --------------------------------------------------------------------
@@ -51,7 +51,7 @@ from taxel.active._edge_table import EdgeRadiusTable, fit_edge_radius_table
 from taxel.active._finger import SimulatedFinger
 from taxel.active._model_library import ModelLibrary
 from taxel.active._object_library import MODEL_NAMES, describe_models, make_model
-from taxel.active._pad_calibration import PadCalibration, calibrate_pad, make_block
+from taxel.active._pad_calibration import PadCalibration, calibrate_pad, core_area, make_block
 from taxel.active._probe import Probe, ProbeReading
 from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._recognition import Recognition, RecognitionResult
@@ -103,6 +103,7 @@ __all__ = [
     "build_edge_radius_table",
     "build_model_library",
     "calibrate_pad",
+    "core_area",
     "cross_validate_texture",
     "describe_models",
     "edge_cross_section",

@@ -19,7 +19,7 @@ import numpy as np
 
 from taxel._validation import check_positive
 from taxel.active._finger import SimulatedFinger
-from taxel.active._pad_calibration import PadCalibration, calibrate_pad, make_block
+from taxel.active._pad_calibration import PadCalibration, calibrate_pad, core_area, make_block
 from taxel.active._probe import Probe, ProbeReading
 from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._scene import ProfileObject, SceneObject, make_ball
@@ -215,8 +215,9 @@ class Deformation:
     Notes
     -----
     Three presses from the same approach pose, retracting in between: a touch (finds the
-    surface), a light and a firm press. In each, the image's contact area gives the pad's
-    compression from the calibration (`PadCalibration.compression`), and the object's top
+    surface), a light and a firm press. In each, the area of the imprint's core (above half
+    its peak, `core_area`) gives the pad's compression from the calibration
+    (`PadCalibration.compression`), and the object's top
     lies that far beyond the pressed sensor surface. Between the light and the firm press
     the finger's travel grows by the object's deformation plus the pad's compression, so
 
@@ -241,7 +242,7 @@ class Deformation:
         self.calibration = calibration
         self.table_height = float(table_height)
 
-    def _press(self, probe: Probe, force: float) -> tuple[ProbeReading, float, int, float]:
+    def _press(self, probe: Probe, force: float) -> tuple[ProbeReading, float, int, float, float]:
         reading = probe.press(normal_force=force)
         sensor = probe.sensor
         contact = find_contact(reading.frame.raw, sensor)
@@ -252,7 +253,8 @@ class Deformation:
         mask = prepared.mask.astype(bool)
         intensity = float(excess[mask].mean()) if mask.any() else 0.0
         pixels = round(contact.area_m2 / (sensor.taxel_pitch[0] * sensor.taxel_pitch[1]))
-        return reading, contact.area_m2, int(pixels), intensity
+        core = core_area(reading.frame.raw, sensor)
+        return reading, contact.area_m2, int(pixels), intensity, core
 
     def run(self, probe: Probe) -> DeformationResult:
         """Touch, press lightly and firmly, and integrate force, travel and images."""
@@ -267,9 +269,11 @@ class Deformation:
         travels, pads, heights, areas, pixels, intensities = [], [], [], [], [], []
         try:
             for force, action in zip(forces, ("touch", "light press", "firm press"), strict=True):
-                reading, area, count, intensity = self._press(probe, force)
+                reading, area, count, intensity, core = self._press(probe, force)
                 probe.retract()
-                pad = self.calibration.compression(force, area)
+                if core <= 0:
+                    raise ValueError(f"the press at {force:g} N shows no imprint core")
+                pad = self.calibration.compression(force, core)
                 # the object's top is the pad's compression beyond the pressed sensor surface
                 down = transform_directions(reading.pose, [0.0, 0.0, 1.0])
                 height = float(reading.pose[2, 3] - self.table_height - pad * down[2])
@@ -284,6 +288,7 @@ class Deformation:
                         f"{action} {force:g} N",
                         reading,
                         contact_area=area,
+                        core_area=core,
                         pad_compression=pad,
                         height=height,
                         intensity=intensity,

@@ -7,7 +7,7 @@ The pad's compression under a contact is set by the force and by the size of the
 softer, and a flat face's is set by its size), and the tactile image shows that size. So
 the pad is calibrated once, like any sensor: press rigid reference objects of known
 height at the forces the procedure uses, read the compression as the finger's travel past
-the known surface, and keep it against the image's contact area.
+the known surface, and keep it against the size of the imprint's core (`core_area`).
 """
 
 from __future__ import annotations
@@ -21,18 +21,27 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from scipy import ndimage
 
 from taxel._validation import as_finite_array, check_positive
 from taxel.active._finger import SimulatedFinger
 from taxel.active._scene import ProfileObject, make_ball
 from taxel.active._shapes import RoundedPolygon
-from taxel.features import find_contact
+from taxel.features import prepare
 from taxel.frames import make_pose
 from taxel.sensor import TactileSensor, make_sensor
 
-__all__ = ["REFERENCE_CUBES", "REFERENCE_RADII", "PadCalibration", "calibrate_pad", "make_block"]
+__all__ = [
+    "REFERENCE_CUBES",
+    "REFERENCE_RADII",
+    "PadCalibration",
+    "calibrate_pad",
+    "core_area",
+    "make_block",
+]
 
 _FORMAT = "taxel.pad_calibration"
+_CORE_LEVEL = 0.25  # the imprint's core: above this fraction of its peak
 _VERSION = 1
 # rigid balls from a 4 mm bearing ball to a 128 mm one, and the flat faces of a 20 mm and a
 # 28 mm cube: image areas from a point-like imprint to three quarters of the pad
@@ -42,16 +51,42 @@ _DOWN = np.diag([1.0, -1.0, -1.0])
 _STANDOFF = 5e-3
 
 
+def core_area(image: Any, sensor_or_pitch: Any) -> float:
+    """Area of the tactile image above a quarter of its peak over the baseline [m^2].
+
+    The imprint's core: its edge lies where the image falls to a quarter of its peak, so it
+    grows less with the pressure that the pad spreads beyond the contact (which widens the
+    low-threshold outline of a small contact by a millimetre all round) and it shrugs off
+    the noise at the outline's edge. It follows the true contact area. Whatever the core
+    encloses counts too: a flat face presses hardest along its rim.
+
+    Examples
+    --------
+    >>> image = np.full((32, 32), 20.0)
+    >>> image[8:16, 8:12] = 100.0  # 32 taxels of contact at 1 mm pitch
+    >>> round(core_area(image, 1e-3) * 1e6, 1)
+    32.0
+    """
+    prepared = prepare(image, sensor_or_pitch, smoothing=0.0)
+    excess = prepared.image - prepared.baseline
+    peak = float(excess.max())
+    if peak <= 0:
+        return 0.0
+    # a flat face presses hardest at its rim: its core is the ring with what it encloses
+    core = ndimage.binary_fill_holes(excess > _CORE_LEVEL * peak)
+    return float(np.count_nonzero(core) * prepared.taxel_area)
+
+
 @dataclass(frozen=True, eq=False)
 class PadCalibration:
-    """The pad's compression against the image's contact area, at each calibrated force.
+    """The pad's compression against the imprint's core area, at each calibrated force.
 
     Attributes
     ----------
     forces : numpy.ndarray
         (n_forces,) the calibrated pressing forces [N], increasing.
     areas : numpy.ndarray
-        (n_forces, n_references) contact area of each reference press in the image [m^2].
+        (n_forces, n_references) `core_area` of each reference press's image [m^2].
     compressions : numpy.ndarray
         (n_forces, n_references) the pad's compression in that press [m].
     sensor : str
@@ -81,7 +116,7 @@ class PadCalibration:
         object.__setattr__(self, "compressions", compressions)
 
     def compression(self, normal_force: float, area: float) -> float:
-        """The pad's compression [m] for a press of `normal_force` [N] showing `area` [m^2].
+        """The pad's compression [m] for a press of `normal_force` [N] of core `area` [m^2].
 
         Linear interpolation of ln(compression) in ln(area) among the references pressed
         at the same force (after making it decrease with area, as a larger contact
@@ -191,7 +226,7 @@ def calibrate_pad(
     -----
     Each reference lies on the table with a known top height; the finger starts 5 mm above
     it, so the pad's compression is the travel minus 5 mm (a rigid object does not deform).
-    The contact area is `taxel.features.find_contact`'s, as the procedure measures it.
+    The imprint is measured by `core_area`, as the procedure measures it.
     """
     chosen = sensor if isinstance(sensor, TactileSensor) else make_sensor(sensor)
     forces = sorted(check_positive("forces", force) for force in forces)
@@ -205,7 +240,7 @@ def calibrate_pad(
         for i, force in enumerate(forces):
             reading = finger.press(normal_force=force)
             finger.retract()
-            areas[i, j] = find_contact(reading.frame.raw, chosen).area_m2
+            areas[i, j] = core_area(reading.frame.raw, chosen)
             compressions[i, j] = reading.travel - _STANDOFF
     return PadCalibration(
         forces=np.array(forces), areas=areas, compressions=compressions, sensor=chosen.name
