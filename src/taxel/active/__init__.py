@@ -31,13 +31,12 @@ Recognition, RecognitionResult, recognize_object, ModelLibrary, build_model_libr
 make_model, MODEL_NAMES, describe_models, TOUCH_FEATURES
 """
 
-from taxel.active._deformation import (
+from taxel.active._deformable_objects import (
     DEFORMATION_OBJECTS,
-    Deformation,
-    DeformationResult,
+    make_block,
     make_deformation_object,
-    measure_deformation,
 )
+from taxel.active._deformation import Deformation, DeformationResult, measure_deformation
 from taxel.active._edge_radius import (
     DEFAULT_EDGE_RADII,
     EdgeRadius,
@@ -51,7 +50,7 @@ from taxel.active._edge_table import EdgeRadiusTable, fit_edge_radius_table
 from taxel.active._finger import SimulatedFinger
 from taxel.active._model_library import ModelLibrary
 from taxel.active._object_library import MODEL_NAMES, describe_models, make_model
-from taxel.active._pad_calibration import PadCalibration, calibrate_pad, core_area, make_block
+from taxel.active._pad_calibration import PadCalibration, calibrate_pad, core_area
 from taxel.active._probe import Probe, ProbeReading
 from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._recognition import Recognition, RecognitionResult

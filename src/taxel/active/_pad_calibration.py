@@ -24,9 +24,9 @@ import numpy as np
 from scipy import ndimage
 
 from taxel._validation import as_finite_array, check_positive
+from taxel.active._deformable_objects import make_block
 from taxel.active._finger import SimulatedFinger
 from taxel.active._scene import ProfileObject, make_ball
-from taxel.active._shapes import RoundedPolygon
 from taxel.features import prepare
 from taxel.frames import make_pose
 from taxel.sensor import TactileSensor, make_sensor
@@ -37,7 +37,6 @@ __all__ = [
     "PadCalibration",
     "calibrate_pad",
     "core_area",
-    "make_block",
 ]
 
 _FORMAT = "taxel.pad_calibration"
@@ -175,20 +174,6 @@ class PadCalibration:
             compressions=np.array(data["compressions_m"], float),
             sensor=str(data.get("sensor", "")),
         )
-
-
-def make_block(name: str, size: float, material: Any = None) -> ProfileObject:
-    """A cube of edge `size` [m] on the table, its top face rounded by a 1 mm fillet.
-
-    Examples
-    --------
-    >>> block = make_block("wood block", 20e-3)
-    >>> round(block.top * 1e3, 1), block.support_travel(10.0)
-    (20.0, 0.0)
-    """
-    size = check_positive("size", size)
-    face = RoundedPolygon(size, sides=4, edge_radius=min(1e-3, size / 4))
-    return ProfileObject(name=name, material=material, profile=face, top=size)
 
 
 def _references(radii: Sequence[float]) -> list[ProfileObject]:
