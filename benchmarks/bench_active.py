@@ -183,8 +183,11 @@ def deformation_section(quick: bool) -> str:
         "### Deformation and stiffness (seed 2.2)\n",
         "A touch (0.5 N), a light (12 N) and a firm (39 N) press. The pad's compression is "
         "read from a calibration on rigid objects of known height (six balls of 2-64 mm "
-        "radius, 20 and 28 mm cubes) against the imprint's area; object deformation = change "
-        "of travel - change of pad compression; deformable when that exceeds the pad's. "
+        "radius, 20 and 28 mm cubes) against the area of the imprint's core (above a quarter "
+        "of its peak); object deformation = change of travel - change of pad compression; "
+        "deformable (the ground truth too, from the solved contact) when that exceeds the "
+        "pad's change of compression: under the same load the object yields more than the "
+        "sensor. "
         f"Calibration {calibration_seconds:.0f} s; {seconds:.1f} s per object.\n",
         "#### The seed's racquet ball and acrylic sphere\n",
         "| | seed | taxel |",
