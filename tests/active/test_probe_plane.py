@@ -9,7 +9,7 @@ from taxel.active import (
     ProfileObject,
     SimulatedFinger,
     box_corner_frame,
-    calibrate_pad,
+    calibrate_contact_points,
     corner_probing_trial,
     estimate_contact_point,
     fit_plane,
@@ -31,7 +31,7 @@ def sensor():
 
 @pytest.fixture(scope="module")
 def calibration(sensor):
-    return calibrate_pad(sensor)
+    return calibrate_contact_points(sensor)
 
 
 def test_calibration_reads_flat_presses_back(sensor, calibration):
@@ -169,7 +169,7 @@ def test_bad_commands_raise_and_leave_the_finger_safe(sensor, calibration):
     with pytest.raises(ValueError, match="`normal_force` must be > 0"):
         probe_plane(finger, poses, normal_force=-1.0)
     with pytest.raises(ValueError, match="piezo8x8"):
-        calibrate_pad(make_sensor("piezo8x8"))
+        calibrate_contact_points(make_sensor("piezo8x8"))
     with pytest.raises(ValueError, match="`n_probes` must be an integer >= 3, got 2"):
         plane_probing_trial(n_probes=2)
     with pytest.raises(ValueError, match="`sensor` must be one of"):

@@ -7,7 +7,7 @@ ProcedureStep, step_from_reading
 
 Surface normal, planarity, edges and corners by probing
 -------------------------------------------------------
-calibrate_pad, PadCalibration, estimate_contact_point, ContactPoint, fit_plane,
+calibrate_contact_points, ContactPointCalibration, estimate_contact_point, ContactPoint, fit_plane,
 PlaneProbing, probe_plane, PlaneEstimate, CornerProbing, locate_corner, CornerEstimate,
 box_corner_frame; simulated trials with known answers: plane_probing_trial, PlaneTrial,
 corner_probing_trial, CornerTrial
@@ -29,15 +29,50 @@ DEFAULT_BAND_EDGES
 Texture classification (k nearest neighbours, JSON models)
 ---------------------------------------------------------
 fit_texture_classifier, TextureClassifier, cross_validate_texture, CrossValidation
+
+Edge radius from a light and a firm press (empirical table, JSON)
+-----------------------------------------------------------------
+EdgeRadius, EdgeRadiusResult, measure_edge_radius, make_edge, edge_cross_section,
+EdgeCrossSection, SECTION_DESCRIPTORS, EdgeRadiusTable, fit_edge_radius_table,
+build_edge_radius_table, DEFAULT_EDGE_RADII
+
+Deformation and stiffness (touch, light and firm press)
+-------------------------------------------------------
+Deformation, DeformationResult, measure_deformation, make_deformation_object,
+DEFORMATION_OBJECTS, make_block, PadCalibration, calibrate_pad, core_area
+
+Recognition against a library of object models (up to three touches)
+--------------------------------------------------------------------
+Recognition, RecognitionResult, recognize_object, ModelLibrary, build_model_library,
+make_model, MODEL_NAMES, describe_models, TOUCH_FEATURES
 """
 
 from taxel.active._contact_point import (
     ContactPoint,
-    PadCalibration,
-    calibrate_pad,
+    ContactPointCalibration,
+    calibrate_contact_points,
     estimate_contact_point,
 )
+from taxel.active._deformable_objects import (
+    DEFORMATION_OBJECTS,
+    make_block,
+    make_deformation_object,
+)
+from taxel.active._deformation import Deformation, DeformationResult, measure_deformation
+from taxel.active._edge_radius import (
+    DEFAULT_EDGE_RADII,
+    EdgeRadius,
+    EdgeRadiusResult,
+    build_edge_radius_table,
+    make_edge,
+    measure_edge_radius,
+)
+from taxel.active._edge_section import SECTION_DESCRIPTORS, EdgeCrossSection, edge_cross_section
+from taxel.active._edge_table import EdgeRadiusTable, fit_edge_radius_table
 from taxel.active._finger import SimulatedFinger
+from taxel.active._model_library import ModelLibrary
+from taxel.active._object_library import MODEL_NAMES, describe_models, make_model
+from taxel.active._pad_calibration import PadCalibration, calibrate_pad, core_area
 from taxel.active._probe import Probe, ProbeReading
 from taxel.active._probe_corner import (
     CornerEstimate,
@@ -53,6 +88,8 @@ from taxel.active._probing_trials import (
     plane_probing_trial,
 )
 from taxel.active._procedure import ProcedureStep, step_from_reading
+from taxel.active._recognition import Recognition, RecognitionResult
+from taxel.active._recognize import build_model_library, recognize_object
 from taxel.active._scene import Box, ProfileObject, SceneObject, make_ball
 from taxel.active._sliding_texture import (
     SLIDING_BAND_EDGES,
@@ -96,19 +133,33 @@ from taxel.active._texture_study import (
     texture_speed_study,
     texture_surface,
 )
+from taxel.active._touch_features import TOUCH_FEATURES
 
 __all__ = [
     "ANNULUS_GROWTH",
     "DEFAULT_BAND_EDGES",
+    "DEFAULT_EDGE_RADII",
+    "DEFORMATION_OBJECTS",
+    "MODEL_NAMES",
+    "SECTION_DESCRIPTORS",
     "SLIDING_BAND_EDGES",
     "SLIP_DISPLACEMENT",
+    "TOUCH_FEATURES",
     "Box",
     "ContactPoint",
+    "ContactPointCalibration",
     "CornerEstimate",
     "CornerProbing",
     "CornerTrial",
     "CrossValidation",
+    "Deformation",
+    "DeformationResult",
+    "EdgeCrossSection",
+    "EdgeRadius",
+    "EdgeRadiusResult",
+    "EdgeRadiusTable",
     "Grating",
+    "ModelLibrary",
     "PadCalibration",
     "PlaneEstimate",
     "PlaneProbing",
@@ -117,6 +168,8 @@ __all__ = [
     "ProbeReading",
     "ProcedureStep",
     "ProfileObject",
+    "Recognition",
+    "RecognitionResult",
     "SampledProfile",
     "SceneObject",
     "SimulatedFinger",
@@ -133,19 +186,33 @@ __all__ = [
     "TextureSpeedStudy",
     "band_power",
     "box_corner_frame",
+    "build_edge_radius_table",
+    "build_model_library",
+    "calibrate_contact_points",
     "calibrate_pad",
+    "core_area",
     "corner_probing_trial",
     "cross_validate_texture",
+    "describe_models",
     "detect_slip",
+    "edge_cross_section",
     "estimate_contact_point",
     "evaluate_slip_detection",
+    "fit_edge_radius_table",
     "fit_plane",
     "fit_texture_classifier",
     "locate_corner",
     "make_ball",
+    "make_block",
+    "make_deformation_object",
+    "make_edge",
+    "make_model",
+    "measure_deformation",
+    "measure_edge_radius",
     "plane_probing_trial",
     "probe_plane",
     "random_slip_scenario",
+    "recognize_object",
     "score_slip_detection",
     "simulate_slip",
     "slide_texture",

@@ -4,7 +4,7 @@ A robot knows the sensor's pose when pressed, the force along the sensor normal 
 force sensor) and the tactile frame. From these, the point where the object's surface
 meets the sensor is found in three steps:
 
-1. Calibration (`calibrate_pad`): a flat plate presses the whole pad at known pressures
+1. Calibration (`calibrate_contact_points`): a flat plate presses the whole pad at known pressures
    (known forces over the pad's area); each taxel's raw reading is tabulated against the
    plate pressure. A frame is then read as an *equivalent plate pressure* per taxel.
 2. Deconvolution: the cover spreads the surface pressure before it reaches the sensing
@@ -34,7 +34,12 @@ from taxel.mechanics import (
 )
 from taxel.sensor import TactileSensor
 
-__all__ = ["ContactPoint", "PadCalibration", "calibrate_pad", "estimate_contact_point"]
+__all__ = [
+    "ContactPoint",
+    "ContactPointCalibration",
+    "calibrate_contact_points",
+    "estimate_contact_point",
+]
 
 _LINEAR_QUANTITIES = ("pressure", "stress", "strain", "displacement")
 _ITERATIONS = 150  # FISTA steps: the contact's centroid and compression settle well before
@@ -42,7 +47,7 @@ _FLOOR = 0.02  # cells below this fraction of the peak pressure are not in conta
 
 
 @dataclass(frozen=True)
-class PadCalibration:
+class ContactPointCalibration:
     """Per-taxel tables from raw readings to the pressure of a flat plate.
 
     Attributes
@@ -79,9 +84,9 @@ class PadCalibration:
         return self.pressure[index] + weight * (self.pressure[index + 1] - self.pressure[index])
 
 
-def calibrate_pad(
+def calibrate_contact_points(
     sensor: TactileSensor, *, n_levels: int = 21, n_frames: int = 8, rng: Any = 0
-) -> PadCalibration:
+) -> ContactPointCalibration:
     """Calibrate a sensor with a flat plate pressing its whole pad at known pressures.
 
     Parameters
@@ -97,13 +102,13 @@ def calibrate_pad(
 
     Returns
     -------
-    PadCalibration
+    ContactPointCalibration
 
     Examples
     --------
     >>> from taxel.sensor import make_sensor
     >>> sensor = make_sensor("resistive16")
-    >>> calibration = calibrate_pad(sensor)
+    >>> calibration = calibrate_contact_points(sensor)
     >>> frame = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, 50e3))
     >>> pressure = calibration.equivalent_pressure(frame.raw)
     >>> bool(np.all(np.abs(pressure - 50e3) < 2e3))
@@ -135,7 +140,7 @@ def calibrate_pad(
     slope = (raw[1] - raw[0]) / (levels[1] - levels[0])
     slope = np.where(np.abs(slope) > 0, np.abs(slope), np.inf)
     noise = float(np.median(unloaded.std(axis=0) / slope))
-    return PadCalibration(levels, raw, noise)
+    return ContactPointCalibration(levels, raw, noise)
 
 
 def _check_static(sensor: TactileSensor) -> None:
@@ -234,7 +239,7 @@ def estimate_contact_point(
     raw: Any,
     normal_force: float,
     sensor: TactileSensor,
-    calibration: PadCalibration,
+    calibration: ContactPointCalibration,
 ) -> ContactPoint:
     """Estimate the contact point of a pressed frame, with the pad's compression.
 
@@ -246,8 +251,8 @@ def estimate_contact_point(
         Measured force along the sensor normal [N], > 0.
     sensor : TactileSensor
         The sensor model (its cover gives the deconvolution and the compression).
-    calibration : PadCalibration
-        From `calibrate_pad`.
+    calibration : ContactPointCalibration
+        From `calibrate_contact_points`.
 
     Returns
     -------
@@ -267,7 +272,7 @@ def estimate_contact_point(
 
     >>> from taxel.sensor import make_sensor
     >>> sensor = make_sensor("resistive16")
-    >>> calibration = calibrate_pad(sensor)
+    >>> calibration = calibrate_contact_points(sensor)
     >>> frame = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, 20e3))
     >>> force = 20e3 * sensor.geometry.active_area
     >>> contact = estimate_contact_point(frame.raw, force, sensor, calibration)

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from taxel._validation import check_positive
-from taxel.active._contact_point import PadCalibration
+from taxel.active._contact_point import ContactPointCalibration
 from taxel.active._probe import Probe
 from taxel.active._probe_plane import (
     MIN_PROBES,
@@ -133,7 +133,7 @@ class CornerProbing:
         Size of the probe pattern on each face [m].
     standoff : float, default 0.01
         Approach distance in front of the guessed face [m].
-    calibration : PadCalibration, optional
+    calibration : ContactPointCalibration, optional
         The sensor's calibration (made on first use when omitted).
 
     Notes
@@ -154,7 +154,7 @@ class CornerProbing:
         inset: float | None = None,
         spread: float = 0.015,
         standoff: float = 0.01,
-        calibration: PadCalibration | None = None,
+        calibration: ContactPointCalibration | None = None,
     ) -> None:
         self.normal_force = check_positive("normal_force", normal_force)
         if int(probes_per_face) != probes_per_face or probes_per_face < MIN_PROBES:
@@ -267,7 +267,7 @@ def locate_corner(
     *,
     normal_force: float = 5.0,
     probes_per_face: int = 3,
-    calibration: PadCalibration | None = None,
+    calibration: ContactPointCalibration | None = None,
 ) -> CornerEstimate:
     """Locate a box corner and its edges by probing three faces (one call of `CornerProbing`).
 
@@ -280,7 +280,7 @@ def locate_corner(
         Force of each press [N].
     probes_per_face : int, default 3
         Presses per face (>= 3).
-    calibration : PadCalibration, optional
+    calibration : ContactPointCalibration, optional
 
     Returns
     -------

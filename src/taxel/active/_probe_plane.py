@@ -21,8 +21,8 @@ import numpy as np
 from taxel._validation import as_finite_array, check_positive
 from taxel.active._contact_point import (
     ContactPoint,
-    PadCalibration,
-    calibrate_pad,
+    ContactPointCalibration,
+    calibrate_contact_points,
     estimate_contact_point,
 )
 from taxel.active._probe import Probe, ProbeReading
@@ -36,9 +36,9 @@ MIN_PROBES = 3
 
 
 @lru_cache(maxsize=4)
-def default_calibration(sensor: TactileSensor) -> PadCalibration:
+def default_calibration(sensor: TactileSensor) -> ContactPointCalibration:
     """The flat-plate calibration of a sensor, made once per sensor object."""
-    return calibrate_pad(sensor)
+    return calibrate_contact_points(sensor)
 
 
 @dataclass(frozen=True)
@@ -149,8 +149,8 @@ class PlaneProbing:
     ----------
     normal_force : float, default 5.0
         Force of each press [N].
-    calibration : PadCalibration, optional
-        The sensor's flat-plate calibration; made with `calibrate_pad` on first use when
+    calibration : ContactPointCalibration, optional
+        The sensor's flat-plate calibration; made with `calibrate_contact_points` on first use when
         omitted.
     model : TactileSensor, optional
         The sensor model whose cover turns frames into contact points; default the probe's
@@ -168,12 +168,14 @@ class PlaneProbing:
         self,
         *,
         normal_force: float = 5.0,
-        calibration: PadCalibration | None = None,
+        calibration: ContactPointCalibration | None = None,
         model: TactileSensor | None = None,
     ) -> None:
         self.normal_force = check_positive("normal_force", normal_force)
-        if calibration is not None and not isinstance(calibration, PadCalibration):
-            raise TypeError(f"`calibration` must be a PadCalibration, got {calibration!r}")
+        if calibration is not None and not isinstance(calibration, ContactPointCalibration):
+            raise TypeError(
+                f"`calibration` must be a ContactPointCalibration, got {calibration!r}"
+            )
         if model is not None and not isinstance(model, TactileSensor):
             raise TypeError(f"`model` must be a TactileSensor, got {model!r}")
         self.calibration = calibration
@@ -261,7 +263,7 @@ def press_and_locate(
     probe: Probe,
     pose: np.ndarray,
     normal_force: float,
-    calibration: PadCalibration,
+    calibration: ContactPointCalibration,
     *,
     label: str,
     model: TactileSensor | None = None,
@@ -301,7 +303,7 @@ def probe_plane(
     poses: Sequence[Any],
     *,
     normal_force: float = 5.0,
-    calibration: PadCalibration | None = None,
+    calibration: ContactPointCalibration | None = None,
 ) -> PlaneEstimate:
     """Probe a surface at several poses and fit a plane (one call of `PlaneProbing`).
 
@@ -313,7 +315,7 @@ def probe_plane(
         N >= 3 approach poses T_BS (4x4) facing the surface.
     normal_force : float, default 5.0
         Force of each press [N].
-    calibration : PadCalibration, optional
+    calibration : ContactPointCalibration, optional
         The sensor's calibration (made on first use when omitted).
 
     Returns

@@ -1,0 +1,101 @@
+"""Balls and blocks of any size and elasticity on the table, to press and judge.
+
+The deformation procedure and its pad calibration press these: a ball flattens against
+the sensor and against the table it lies on, a cube stands flat on the table with its top
+face rounded by a small fillet.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from taxel._validation import check_positive
+from taxel.active._scene import ProfileObject, SceneObject, make_ball
+from taxel.active._shapes import RoundedPolygon
+from taxel.mechanics import ElasticMaterial
+
+__all__ = ["DEFORMATION_OBJECTS", "make_block", "make_deformation_object", "top_height"]
+
+
+def make_block(name: str, size: float, material: Any = None) -> ProfileObject:
+    """A cube of edge `size` [m] on the table, its top face rounded by a 1 mm fillet.
+
+    Examples
+    --------
+    >>> block = make_block("wood block", 20e-3)
+    >>> round(block.top * 1e3, 1), block.support_travel(10.0)
+    (20.0, 0.0)
+    """
+    size = check_positive("size", size)
+    face = RoundedPolygon(size, sides=4, edge_radius=min(1e-3, size / 4))
+    return ProfileObject(name=name, material=material, profile=face, top=size)
+
+
+# name: (shape, size [m], Young's modulus [Pa], Poisson's ratio); a ball's size is its radius,
+# a block's its edge. The racquet ball's modulus reproduces the seed's 57 -> 53 mm at 12 N.
+DEFORMATION_OBJECTS: dict[str, tuple[str, float, float, float]] = {
+    "racquet ball": ("ball", 28.5e-3, 0.45e6, 0.5),
+    "acrylic sphere": ("ball", 6.25e-3, 3.2e9, 0.37),
+    "steel ball": ("ball", 10e-3, 200e9, 0.3),
+    "rubber ball": ("ball", 15e-3, 2e6, 0.49),
+    "foam block": ("block", 25e-3, 0.2e6, 0.3),
+    "wood block": ("block", 20e-3, 10e9, 0.35),
+}
+
+
+def make_deformation_object(
+    name: str = "racquet ball",
+    *,
+    shape: str | None = None,
+    size: float | None = None,
+    youngs_modulus: float | None = None,
+    poisson_ratio: float | None = None,
+) -> ProfileObject:
+    """A ball or block on the table, named from `DEFORMATION_OBJECTS` or given by parameters.
+
+    Parameters
+    ----------
+    name : str, default "racquet ball"
+        A name of `DEFORMATION_OBJECTS`, or any name when all parameters are given.
+    shape : {"ball", "block"}, optional
+        Overrides the named object's shape.
+    size : float, optional
+        Radius of a ball or edge of a cubic block [m].
+    youngs_modulus : float, optional
+        The object's Young's modulus [Pa].
+    poisson_ratio : float, optional
+        The object's Poisson's ratio.
+
+    Returns
+    -------
+    ProfileObject
+        A ball (it also flattens against the table) or a cube (flat-bottomed, its top face
+        rounded by a 1 mm fillet), centred at the base origin.
+
+    Examples
+    --------
+    >>> ball = make_deformation_object("racquet ball")
+    >>> round(ball.top * 1e3, 1), ball.material.youngs_modulus
+    (57.0, 450000.0)
+    """
+    known = DEFORMATION_OBJECTS.get(name)
+    if known is None and None in (shape, size, youngs_modulus):
+        raise ValueError(
+            f"`name` must be one of {', '.join(DEFORMATION_OBJECTS)} unless shape, size and "
+            f"youngs_modulus are all given; got {name!r}"
+        )
+    base = known or ("ball", 0.0, 0.0, 0.5)
+    shape = shape or base[0]
+    size = check_positive("size", size if size is not None else base[1])
+    modulus = check_positive("youngs_modulus", youngs_modulus or base[2])
+    material = ElasticMaterial(modulus, poisson_ratio if poisson_ratio is not None else base[3])
+    if shape == "ball":
+        return make_ball(name, size, material)
+    if shape == "block":
+        return make_block(name, size, material)
+    raise ValueError(f"`shape` must be one of ball, block; got {shape!r}")
+
+
+def top_height(item: SceneObject) -> float:
+    """Height of an object's top above the table [m] (a profile object's or a box's)."""
+    return float(getattr(item, "top", None) or getattr(item, "size", (0, 0, 0))[2])

@@ -1,0 +1,219 @@
+"""Recognise an object by touching it up to three times and matching a library of models.
+
+Ellis seed, introduction: "various features of the object are needed to identify it as
+matching a known model (or, if information is limited and errorful, as matching one of a
+few specifiable models)". The finger touches where the object is thought to be, then twice
+more along the imprint's long axis, one object length's worth either way; the rotation-
+invariant features of the three touches are compared with those of the library's models
+touched the same way at canonical poses, and the models are ranked.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from taxel._validation import check_positive
+from taxel.active._model_library import ModelLibrary
+from taxel.active._probe import Probe
+from taxel.active._procedure import ProcedureStep, step_from_reading
+from taxel.active._touch_features import TOUCH_FEATURES, touch_vector
+from taxel.features import extract, prepare
+from taxel.frames import transform_directions
+
+__all__ = ["Recognition", "RecognitionResult", "explore", "touch_descriptor"]
+
+N_TOUCHES = 3
+
+
+def touch_descriptor(touches: Sequence[np.ndarray]) -> np.ndarray:
+    """One object's descriptor from its (up to) three touch vectors.
+
+    The first touch's features, then the smaller and the larger value of each feature over
+    the second and third touch (which of the two comes first along the axis is arbitrary).
+
+    Examples
+    --------
+    >>> from taxel.active._touch_features import touch_vector
+    >>> descriptor = touch_descriptor([touch_vector(None)] * 3)
+    >>> descriptor.shape, float(descriptor[0])
+    ((39,), 0.0)
+    """
+    n = len(TOUCH_FEATURES)
+    first = np.asarray(touches[0], float) if touches else np.full(n, np.nan)
+    rest = [np.asarray(t, float) for t in touches[1:N_TOUCHES]]
+    if not rest:
+        return np.concatenate([first, np.full(2 * n, np.nan)])
+    stack = np.stack(rest)
+    with warnings.catch_warnings():  # an all-NaN feature (absent in both) stays NaN
+        warnings.simplefilter("ignore", RuntimeWarning)
+        low = np.nanmin(stack, axis=0)
+        high = np.nanmax(stack, axis=0)
+    return np.concatenate([first, low, high])
+
+
+def explore(
+    probe: Probe, *, normal_force: float, step: float
+) -> tuple[list[np.ndarray], list[ProcedureStep]]:
+    """Touch where the probe is, then `step` [m] either way along the imprint's long axis.
+
+    A touch that finds nothing within the probe's reach (the probe refuses to press)
+    counts as a touch without contact. The probe is retracted after each touch and
+    returned to its starting pose at the end, also when a command fails.
+    """
+    start = probe.pose
+    sensor = probe.sensor
+    vectors: list[np.ndarray] = []
+    steps: list[ProcedureStep] = []
+    axis = transform_directions(start, [1.0, 0.0, 0.0])
+    try:
+        for index, shift in enumerate((0.0, step, -step)):
+            pose = start.copy()
+            pose[:3, 3] += shift * axis
+            if index:
+                probe.move_to(pose)
+                steps.append(ProcedureStep("move", position=pose[:3, 3].copy()))
+            try:
+                reading = probe.press(normal_force=normal_force)
+            except ValueError as error:  # nothing to press within reach
+                vectors.append(touch_vector(None))
+                steps.append(
+                    ProcedureStep(f"touch {index + 1}: no contact ({error})", position=pose[:3, 3])
+                )
+                continue
+            features = extract(reading.frame.raw, sensor, pose=reading.pose)
+            probe.retract()
+            vector = touch_vector(features, prepare(reading.frame.raw, sensor))
+            vectors.append(vector)
+            measured = dict(zip(TOUCH_FEATURES, vector, strict=True))
+            steps.append(
+                step_from_reading(
+                    f"touch {index + 1} {normal_force:g} N: {features.contact_type}",
+                    reading,
+                    **{k: v for k, v in measured.items() if math.isfinite(v)},
+                )
+            )
+            if index == 0 and features.pose is not None and features.pose.axis_base is not None:
+                # the imprint's long axis, kept in the sensor's plane
+                normal = transform_directions(start, [0.0, 0.0, 1.0])
+                axis = np.asarray(features.pose.axis_base, float)
+                axis = axis - (axis @ normal) * normal
+                axis /= max(float(np.linalg.norm(axis)), 1e-12)
+    finally:
+        probe.retract()
+        probe.move_to(start)
+    steps.append(ProcedureStep("return to the start", position=start[:3, 3].copy()))
+    return vectors, steps
+
+
+@dataclass(frozen=True)
+class RecognitionResult:
+    """The models ranked against the touches of an object.
+
+    Attributes
+    ----------
+    name : str
+        The best-matching model.
+    candidates : tuple of (str, float, float)
+        Every model with its score (the share of exp(-distance / 2) over all models, in
+        [0, 1]) and its distance (mean squared standardised feature difference to the
+        model's nearest canonical touch), best first.
+    descriptor : numpy.ndarray
+        The object's descriptor (`touch_descriptor`).
+    n_touches : int
+        Touches made.
+    message : str
+        How sure the match is, in words.
+    steps : tuple of ProcedureStep
+        What the finger did and measured.
+    """
+
+    name: str
+    candidates: tuple[tuple[str, float, float], ...]
+    descriptor: np.ndarray = field(repr=False)
+    n_touches: int
+    message: str
+    steps: tuple[ProcedureStep, ...] = field(repr=False)
+
+    @property
+    def score(self) -> float:
+        """Score of the best model."""
+        return self.candidates[0][1]
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready dictionary."""
+        return {
+            "name": self.name,
+            "score": self.score,
+            "candidates": [
+                {"name": name, "score": score, "distance": distance}
+                for name, score, distance in self.candidates
+            ],
+            "n_touches": self.n_touches,
+            "message": self.message,
+            "steps": [step.to_dict() for step in self.steps],
+        }
+
+
+class Recognition:
+    """Touch an object up to three times and rank the library's models (seed, intro).
+
+    Parameters
+    ----------
+    library : ModelLibrary or path
+        The models' canonical descriptors (`build_model_library`, `ModelLibrary.load`);
+        its force and exploration step are used.
+
+    Notes
+    -----
+    Touch 1 is made where the probe is (above where the object is thought to be). The
+    imprint's major axis (or the sensor's x axis when nothing was touched) then sets the
+    direction of touches 2 and 3, one library step to either side: along a pen or a key
+    they find the ends, across a small object its rim, beside a can top its rim. The
+    touches' rotation-invariant features (`TOUCH_FEATURES`) form the descriptor
+    (`touch_descriptor`) that `ModelLibrary.match` compares with every model.
+    """
+
+    def __init__(self, library: ModelLibrary | str | Any) -> None:
+        if not isinstance(library, ModelLibrary):
+            library = ModelLibrary.load(library)
+        self.library = library
+
+    def run(self, probe: Probe) -> RecognitionResult:
+        """Explore the object and rank the models."""
+        library = self.library
+        if library.sensor and probe.sensor.name != library.sensor:
+            raise ValueError(
+                f"`library` was made on sensor {library.sensor!r}, the probe carries "
+                f"{probe.sensor.name!r}"
+            )
+        vectors, steps = explore(
+            probe,
+            normal_force=check_positive("normal_force", library.normal_force),
+            step=library.step,
+        )
+        if not any(vector[0] > 0 for vector in vectors):
+            raise ValueError(
+                "no touch found contact: the object is not within "
+                f"{library.step * 1e3:g} mm of the start pose"
+            )
+        descriptor = touch_descriptor(vectors)
+        ranked = library.match(descriptor)
+        best, runner_up = ranked[0], ranked[1] if len(ranked) > 1 else None
+        if runner_up is None or best[1] > 0.9:
+            message = f"{best[0]} (clear match)"
+        else:
+            message = f"{best[0]}, or perhaps {runner_up[0]} (score {best[1]:.2f})"
+        return RecognitionResult(
+            name=best[0],
+            candidates=tuple(ranked),
+            descriptor=descriptor,
+            n_touches=len(vectors),
+            message=message,
+            steps=tuple(steps),
+        )

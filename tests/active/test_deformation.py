@@ -1,0 +1,134 @@
+"""Deformation and stiffness from a touch, a light and a firm press (Ellis seed, 2.2)."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from taxel.active import (
+    Deformation,
+    PadCalibration,
+    SimulatedFinger,
+    calibrate_pad,
+    make_block,
+    make_deformation_object,
+    measure_deformation,
+)
+from taxel.frames import make_pose
+from taxel.mechanics import ElasticMaterial
+from taxel.sensor import make_sensor
+
+DOWN = np.diag([1.0, -1.0, -1.0])
+
+
+@pytest.fixture(scope="module")
+def calibration():
+    return calibrate_pad(radii=(4e-3, 16e-3, 64e-3))
+
+
+def test_calibration_holds_the_rigid_references(calibration):
+    assert calibration.forces.tolist() == [0.5, 12.0, 39.0]
+    assert calibration.areas.shape == (3, 5)  # three balls and two cubes
+    # a rigid ball of 4 mm radius pushes 0.75 mm into the 1 mm pad at 12 N: the pad's own
+    # compression is of the order of what a soft object's deformation would be
+    assert calibration.compressions[1, 0] == pytest.approx(0.749e-3, rel=0.02)
+    # harder presses compress more; larger contacts less
+    assert np.all(np.diff(calibration.compressions, axis=0) > 0)
+    assert calibration.compression(39.0, 5e-4) < calibration.compression(39.0, 1e-4)
+
+
+def test_pad_compression_interpolates_and_extends():
+    calibration = PadCalibration(
+        forces=np.array([1.0, 2.0]),
+        areas=np.array([[1e-5, 4e-5], [1e-5, 4e-5]]),
+        compressions=np.array([[4e-4, 1e-4], [8e-4, 2e-4]]),
+    )
+    # halfway in ln(area): the geometric mean; beyond: the last slope (-1 here) goes on
+    assert calibration.compression(1.0, 2e-5) == pytest.approx(2e-4)
+    assert calibration.compression(2.0, 8e-5) == pytest.approx(1e-4)
+    assert calibration.compression(1.0, 1e-6) == pytest.approx(4e-4)
+    with pytest.raises(ValueError, match="`normal_force` must be one of the calibrated"):
+        calibration.compression(3.0, 1e-5)
+
+
+def test_racquet_ball_reproduces_the_seed(calibration):
+    result = measure_deformation("racquet ball", calibration=calibration, rng=2)
+    assert result.deformable
+    # Ellis: 57 mm nominal, 53 mm at 12 N (47 mm at 39 N; the simulated ball gives 48.2)
+    assert result.unloaded_height == pytest.approx(57.0e-3, abs=0.2e-3)
+    assert result.heights[1] == pytest.approx(53.0e-3, abs=0.2e-3)
+    assert result.heights[2] == pytest.approx(48.2e-3, abs=0.2e-3)
+    assert result.height_change == pytest.approx(4.8e-3, abs=0.2e-3)
+    # 27 N over the ball's 4.8 mm: about 5.6 kN/m, the pad hardly moves
+    assert result.stiffness == pytest.approx(27.0 / 4.8e-3, rel=0.05)
+    assert result.deformability > 100
+    assert result.area_pixels[2] > 1.5 * result.area_pixels[1]
+    json.dumps(result.to_dict())
+
+
+def test_acrylic_sphere_is_rigid(calibration):
+    result = measure_deformation("acrylic sphere", calibration=calibration, rng=2)
+    assert not result.deformable
+    # the finger travels 0.38 mm further at 39 N, and that is all the pad's
+    assert result.travels[2] - result.travels[1] == pytest.approx(0.38e-3, abs=0.02e-3)
+    assert abs(result.height_change) < 0.05e-3
+    assert result.heights[1] == pytest.approx(12.5e-3, abs=0.05e-3)
+    # what is left of the travel after the pad's compression is a small fraction of it
+    assert result.deformability < 0.3
+    assert result.stiffness > 100 * 27.0 / 4.8e-3
+
+
+@pytest.mark.parametrize(
+    ("shape", "size", "modulus", "deformable"),
+    [("ball", 10e-3, 10e6, True), ("ball", 10e-3, 70e9, False), ("block", 20e-3, 1e6, True)],
+)
+def test_verdict_of_balls_and_blocks(calibration, shape, size, modulus, deformable):
+    item = make_deformation_object(
+        "sample", shape=shape, size=size, youngs_modulus=modulus, poisson_ratio=0.45
+    )
+    result = measure_deformation(item, calibration=calibration, rng=3)
+    assert result.deformable is deformable
+
+
+def test_calibration_round_trips_through_a_file(calibration, tmp_path):
+    loaded = PadCalibration.load(calibration.save(tmp_path / "pad.json"))
+    assert loaded.compression(12.0, 2e-4) == calibration.compression(12.0, 2e-4)
+    assert loaded.sensor == "vhdta128"
+
+
+def test_block_has_a_flat_filleted_face():
+    block = make_block("block", 20e-3, ElasticMaterial(1e6, 0.45))
+    heights = block.profile.local_heights(np.array([0.0, 9e-3, 9.9e-3, 10.5e-3]), np.zeros(4))
+    assert heights[:2].tolist() == [0.0, 0.0]
+    assert heights[2] == pytest.approx(1e-3 - math.sqrt(1e-6 - 0.9e-3**2))
+    assert math.isinf(heights[3])
+
+
+def test_bad_commands_leave_the_finger_retracted(calibration):
+    sensor = make_sensor("vhdta128")
+    ball = make_deformation_object("rubber ball")
+    start = make_pose(DOWN, [0.0, 0.0, ball.top + 0.005])
+    finger = SimulatedFinger(sensor, [ball], start)
+    too_hard = PadCalibration(
+        forces=np.array([0.5, 12.0, 500.0]),
+        areas=calibration.areas,
+        compressions=calibration.compressions,
+        sensor="vhdta128",
+    )
+    with pytest.raises(ValueError, match="`normal_force` must be <= the finger's limit"):
+        Deformation(too_hard).run(finger)
+    assert np.array_equal(finger.pose, start)
+    away = SimulatedFinger(sensor, [ball], make_pose(DOWN, [0.2, 0.0, ball.top + 0.005]))
+    with pytest.raises(ValueError, match="no object within the finger's reach"):
+        Deformation(calibration).run(away)
+    with pytest.raises(ValueError, match="`forces` must be a light and a firm force"):
+        measure_deformation("rubber ball", forces=(39.0, 12.0), calibration=calibration)
+    with pytest.raises(ValueError, match="`name` must be one of racquet ball"):
+        make_deformation_object("jelly")
+    with pytest.raises(ValueError, match="must hold 3 forces"):
+        Deformation(
+            PadCalibration(
+                forces=np.array([12.0]), areas=np.ones((1, 2)), compressions=np.ones((1, 2))
+            )
+        )

@@ -1,0 +1,132 @@
+"""Edge radius from a light and a firm press (Ellis seed, section 2.2)."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from taxel.active import (
+    EdgeRadius,
+    EdgeRadiusTable,
+    SimulatedFinger,
+    build_edge_radius_table,
+    edge_cross_section,
+    make_ball,
+    make_edge,
+    measure_edge_radius,
+)
+from taxel.frames import make_pose
+from taxel.sensor import make_sensor
+
+DOWN = np.diag([1.0, -1.0, -1.0])
+
+
+@pytest.fixture(scope="module")
+def table():
+    # three known radii, each at two edge angles: enough to interpolate, quick to build
+    return build_edge_radius_table([2e-3, 4e-3, 8e-3], orientations=2, rng=0)
+
+
+def _ridge(angle_deg, sigma=2.0, size=64):
+    rows, cols = np.mgrid[:size, :size].astype(float)
+    centre = (size - 1) / 2
+    angle = math.radians(angle_deg)
+    distance = -(cols - centre) * math.sin(angle) + (rows - centre) * math.cos(angle)
+    return 20 + 80 * np.exp(-(distance**2) / (2 * sigma**2))
+
+
+def test_cross_section_of_a_tilted_ridge():
+    section = edge_cross_section(_ridge(30.0), 0.25e-3, normal_force=8.0)
+    assert math.degrees(section.angle_rad) == pytest.approx(30.0, abs=0.3)
+    assert section.offset_m == pytest.approx(0.0, abs=0.05e-3)
+    # a line through the centre of a 16 mm square at 30 degrees crosses 16 / cos 30 mm of it
+    assert section.chord_m == pytest.approx(16e-3 / math.cos(math.radians(30)), rel=1e-6)
+    assert section.force_per_length == pytest.approx(8.0 / section.chord_m)
+    # FWHM of a Gaussian of sigma 2 taxels: 4.71 taxels (bilinear sampling adds a little)
+    assert section.descriptors["width_50"] / 0.25e-3 == pytest.approx(4.71, abs=0.15)
+    assert section.descriptors["peak"] == pytest.approx(80.0, abs=2.5)  # sampled off the crest
+
+
+def test_no_edge_in_the_image_is_refused():
+    with pytest.raises(ValueError, match="`image` shows no edge"):
+        edge_cross_section(np.full((32, 32), 24.0), 1e-3, normal_force=12.0)
+
+
+def test_table_interpolates_radii_it_does_not_hold(table):
+    assert table.radii.tolist() == [2e-3, 4e-3, 8e-3]
+    assert table.forces.tolist() == [12.0, 39.0]
+    for radius, angle in [(3.4e-3, 0.3), (6.5e-3, 1.0)]:
+        result = measure_edge_radius(
+            radius, table=table, position=(1e-3, -1e-3), angle=angle, rng=5
+        )
+        assert result.radius == pytest.approx(radius, abs=0.25e-3)
+        assert result.nearest_radius == table.radii[np.argmin(np.abs(table.radii - radius))]
+        assert result.message == "matched"
+        assert [step.normal_force for step in result.steps[:2]] == pytest.approx([12.0, 39.0])
+    json.dumps(result.to_dict())
+
+
+def test_the_firm_press_widens_the_cross_section(table):
+    result = measure_edge_radius(4e-3, table=table, angle=0.7, rng=1)
+    light, firm = result.sections
+    assert firm.descriptors["width_50"] > light.descriptors["width_50"]
+    assert firm.descriptors["area"] > light.descriptors["area"]
+    assert firm.force_per_length / light.force_per_length == pytest.approx(39 / 12, rel=0.02)
+
+
+def test_table_round_trips_through_a_file(table, tmp_path):
+    path = table.save(tmp_path / "table.json")
+    loaded = EdgeRadiusTable.load(path)
+    loads = table.reference_loads * 1.1
+    assert np.array_equal(loaded.predict(loads), table.predict(loads))
+    assert loaded.sensor == "vhdta128"
+    with pytest.raises(ValueError, match="is not an edge radius table"):
+        (tmp_path / "other.json").write_text("{}")
+        EdgeRadiusTable.load(tmp_path / "other.json")
+
+
+def test_an_empty_table_is_refused(table):
+    with pytest.raises(ValueError, match="`radii` must hold at least 2 known radii, got 0"):
+        EdgeRadiusTable(
+            radii=np.zeros(0),
+            forces=table.forces,
+            reference_loads=table.reference_loads,
+            intercepts=np.zeros((0, 2, 6)),
+            slopes=np.zeros((0, 2, 6)),
+            spreads=table.spreads,
+        )
+    with pytest.raises(ValueError, match="`radii` must hold at least 2 distinct radii"):
+        build_edge_radius_table([3e-3])
+
+
+def _copy(table, **changes):
+    fields = {
+        name: getattr(table, name)
+        for name in ("radii", "forces", "reference_loads", "intercepts", "slopes", "spreads")
+    }
+    fields["sensor"] = table.sensor
+    return EdgeRadiusTable(**(fields | changes))
+
+
+def test_bad_commands_leave_the_finger_retracted(table):
+    sensor = make_sensor("vhdta128")
+    start = make_pose(DOWN, [0.0, 0.0, 0.025])
+    # a force beyond the finger's range
+    finger = SimulatedFinger(sensor, [make_edge(3e-3)], start)
+    too_hard = _copy(table, forces=np.array([12.0, 500.0]))
+    with pytest.raises(ValueError, match="`normal_force` must be <= the finger's limit"):
+        EdgeRadius(too_hard).run(finger)
+    assert np.array_equal(finger.pose, start)
+    # a pose away from the edge: nothing to press
+    finger = SimulatedFinger(sensor, [make_edge(3e-3, position=(0.0, 0.1))], start)
+    with pytest.raises(ValueError, match="no object within the finger's reach"):
+        EdgeRadius(table).run(finger)
+    # a ball is not an edge: the image shows no straight edge across the sensor
+    finger = SimulatedFinger(sensor, [make_ball("ball", 5e-3)], make_pose(DOWN, [0, 0, 0.015]))
+    with pytest.raises(ValueError, match="no straight edge across the sensor"):
+        EdgeRadius(table).run(finger)
+    assert np.array_equal(finger.pose, make_pose(DOWN, [0, 0, 0.015]))
+    # a table from another sensor
+    with pytest.raises(ValueError, match="was made on sensor 'other'"):
+        EdgeRadius(_copy(table, sensor="other")).run(finger)

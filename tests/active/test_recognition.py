@@ -1,0 +1,113 @@
+"""Recognition against a library of object models (Ellis seed, introduction)."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from taxel.active import (
+    MODEL_NAMES,
+    TOUCH_FEATURES,
+    ModelLibrary,
+    Recognition,
+    SimulatedFinger,
+    build_model_library,
+    describe_models,
+    make_model,
+    recognize_object,
+)
+from taxel.active._recognition import touch_descriptor
+from taxel.active._touch_features import touch_vector
+from taxel.frames import make_pose
+from taxel.sensor import make_sensor
+
+DOWN = np.diag([1.0, -1.0, -1.0])
+MODELS = ("washer", "coin", "pen")
+
+
+@pytest.fixture(scope="module")
+def library():
+    return build_model_library(MODELS, rotations=2)
+
+
+def test_the_library_holds_the_seven_models():
+    assert MODEL_NAMES == (
+        "washer", "coin", "key blank", "bolt head", "box corner", "pen", "can"
+    )  # fmt: skip
+    assert set(describe_models()) == set(MODEL_NAMES)
+    can = make_model("can", position=(0.05, 0.0))
+    # the rim's crest is 26 mm from the can's axis, its top 115 mm up
+    assert can.ray_distances(np.array([[0.076, 0.0, 0.2]]), [0, 0, -1])[0] == pytest.approx(
+        0.2 - 0.115
+    )
+    key = make_model("key blank", angle=math.pi / 2)
+    origins = np.array([[0.0, -0.016, 0.01], [0.0, 0.02, 0.01]])  # the bow's hole, the shank
+    distances = key.ray_distances(origins, [0, 0, -1])
+    assert math.isinf(distances[0])
+    assert distances[1] == pytest.approx(0.008)
+
+
+@pytest.mark.parametrize(("name", "seed"), [("washer", 4), ("coin", 5), ("pen", 6)])
+def test_models_at_random_poses_are_recognised(library, name, seed):
+    result = recognize_object(name, library=library, rng=seed)
+    assert result.name == name
+    assert result.n_touches == 3
+    assert result.candidates[0][0] == name
+    assert sum(c[1] for c in result.candidates) == pytest.approx(1.0)
+    assert result.score > 0.5
+    json.dumps(result.to_dict())
+
+
+def test_touch_vectors_and_descriptors():
+    empty = touch_vector(None)
+    assert empty.shape == (len(TOUCH_FEATURES),)
+    assert empty[0] == 0.0 and np.isnan(empty[1:]).all()
+    first = np.arange(len(TOUCH_FEATURES), dtype=float)
+    descriptor = touch_descriptor([first, first + 2, first - 1])
+    n = len(TOUCH_FEATURES)
+    assert descriptor[:n].tolist() == first.tolist()
+    assert descriptor[n : 2 * n].tolist() == (first - 1).tolist()
+    assert descriptor[2 * n :].tolist() == (first + 2).tolist()
+    # an absent second touch leaves the other's values; absent in both stays NaN
+    descriptor = touch_descriptor([first, empty, empty])
+    assert descriptor[n] == 0.0 and np.isnan(descriptor[n + 1])
+
+
+def test_matching_ranks_by_the_nearest_template(tmp_path):
+    library = ModelLibrary.from_templates(
+        [[1.0, 10.0], [1.0, 12.0], [0.0, np.nan]],
+        ["ring", "ring", "nothing"],
+        ("touch1:present", "touch1:major_axis"),
+        normal_force=10.0,
+        step=0.02,
+    )
+    # spreads: the ring's major axis varies by sqrt(2); presence is floored at 0.25
+    assert library.scales.tolist() == pytest.approx([0.25, math.sqrt(2)])
+    ranked = library.match([1.0, 11.0])
+    assert [name for name, _, _ in ranked] == ["ring", "nothing"]
+    # distance to the nothing template: presence differs by 4 spreads (capped at 16), the
+    # major axis is seen in one only (9): mean 12.5
+    assert ranked[1][2] == pytest.approx(12.5)
+    assert ranked[0][2] == pytest.approx(0.25)
+    loaded = ModelLibrary.load(library.save(tmp_path / "library.json"))
+    assert loaded.match([1.0, 11.0]) == ranked
+
+
+def test_bad_commands_leave_the_finger_at_its_start(library):
+    sensor = make_sensor("vhdta128")
+    start = make_pose(DOWN, [0.0, 0.0, 0.01])
+    finger = SimulatedFinger(sensor, [make_model("washer", position=(0.3, 0.0))], start)
+    with pytest.raises(ValueError, match="no touch found contact"):
+        Recognition(library).run(finger)
+    assert np.array_equal(finger.pose, start)
+    with pytest.raises(ValueError, match="`name` must be one of washer"):
+        recognize_object("spoon", library=library)
+    with pytest.raises(ValueError, match="`models` must name at least 2 models"):
+        build_model_library(["washer"])
+    other = ModelLibrary.from_templates(
+        library.templates, library.labels, library.feature_names, normal_force=15.0,
+        step=0.02, sensor="other",
+    )  # fmt: skip
+    with pytest.raises(ValueError, match="was made on sensor 'other'"):
+        Recognition(other).run(finger)
