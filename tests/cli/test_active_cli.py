@@ -44,3 +44,56 @@ def test_bad_arguments_are_one_line_and_exit_2(capsys, arguments, message):
     assert code == 2
     error = capsys.readouterr().err
     assert error.count("\n") == 1 and message in error
+
+
+@pytest.fixture(scope="module")
+def small_files(tmp_path_factory):
+    """Small tables and libraries built once, so the commands only load them."""
+    from taxel.active import build_edge_radius_table, build_model_library, calibrate_pad
+
+    folder = tmp_path_factory.mktemp("active")
+    build_edge_radius_table((2.2e-3, 3.3e-3, 4.7e-3), orientations=2, path=folder / "t.json")
+    build_model_library(("washer", "coin"), rotations=2, path=folder / "l.json")
+    calibrate_pad(radii=(3e-3, 10e-3)).save(folder / "pad.json")
+    return folder
+
+
+def test_edge_radius_loads_its_table(capsys, small_files):
+    table = small_files / "t.json"
+    before = table.read_text()
+    assert (
+        main(
+            [
+                "active",
+                "edge-radius",
+                "--radius-mm",
+                "3",
+                "--table",
+                str(table),
+                "--json",
+                "--seed",
+                "1",
+            ]
+        )
+        == 0
+    )
+    result = json.loads(capsys.readouterr().out)
+    assert result["radius_m"] == pytest.approx(3e-3, abs=0.4e-3)
+    assert table.read_text() == before  # loaded, never rewritten
+
+
+def test_stiffness_tells_the_racquet_ball_from_the_acrylic_sphere(capsys, small_files):
+    pad = str(small_files / "pad.json")
+    assert main(["active", "stiffness", "--calibration", pad]) == 0
+    assert "verdict: deformable" in capsys.readouterr().out
+    assert main(["active", "stiffness", "--object", "acrylic sphere", "--calibration", pad]) == 0
+    assert "verdict: rigid" in capsys.readouterr().out
+
+
+def test_recognize_ranks_the_candidates(capsys, small_files):
+    library = str(small_files / "l.json")
+    assert (
+        main(["active", "recognize", "--object", "washer", "--library", library, "--seed", "2"])
+        == 0
+    )
+    assert "recognized as: washer" in capsys.readouterr().out

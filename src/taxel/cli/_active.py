@@ -70,6 +70,104 @@ def _locate_corner(arguments: argparse.Namespace) -> int:
     return _emit(arguments, trial.to_dict(), lines)
 
 
+def _file_or_build(
+    path: str | None, load: Callable[[str], Any], build: Callable[[str], Any], what: str
+) -> Any:
+    """Load `path` when it exists; otherwise build it there (never overwriting a file)."""
+    if path is None:
+        return None
+    from pathlib import Path
+
+    if Path(path).exists():
+        return load(path)
+    sys.stderr.write(f"building the {what} (this takes a while); saving it to {path}\n")
+    return build(path)
+
+
+def _edge_radius(arguments: argparse.Namespace) -> int:
+    from taxel.active import EdgeRadiusTable, build_edge_radius_table, measure_edge_radius
+
+    table = _file_or_build(
+        arguments.table,
+        EdgeRadiusTable.load,
+        lambda path: build_edge_radius_table(sensor=arguments.sensor, path=path),
+        "edge-radius table",
+    )
+    result = measure_edge_radius(
+        arguments.radius_mm * 1e-3,
+        table=table,
+        sensor=arguments.sensor,
+        position=(arguments.x_mm * 1e-3, arguments.y_mm * 1e-3),
+        angle=math.radians(arguments.angle_deg),
+        rng=arguments.seed,
+    )
+    lines = [
+        f"edge of radius {arguments.radius_mm:g} mm pressed at 12 N and 39 N on "
+        f"{arguments.sensor}",
+        f"estimated radius: {result.radius * 1e3:.3f} mm "
+        f"(+/- {result.radius_uncertainty * 1e3:.3f} mm)",
+        f"nearest table entry: {result.nearest_radius * 1e3:g} mm",
+        f"error: {(result.radius - arguments.radius_mm * 1e-3) * 1e3:+.3f} mm",
+    ]
+    return _emit(arguments, result.to_dict(), lines)
+
+
+def _stiffness(arguments: argparse.Namespace) -> int:
+    from taxel.active import PadCalibration, calibrate_pad, measure_deformation
+
+    def build(path: str) -> Any:
+        calibration = calibrate_pad(arguments.sensor)
+        calibration.save(path)
+        return calibration
+
+    calibration = _file_or_build(
+        arguments.calibration, PadCalibration.load, build, "pad calibration"
+    )
+    custom = arguments.shape is not None
+    result = measure_deformation(
+        None if custom else arguments.object,
+        sensor=arguments.sensor,
+        forces=tuple(arguments.forces),
+        calibration=calibration,
+        rng=arguments.seed,
+        shape=arguments.shape,
+        size=None if arguments.size_mm is None else arguments.size_mm * 1e-3,
+        youngs_modulus=None if arguments.modulus_mpa is None else arguments.modulus_mpa * 1e6,
+        poisson_ratio=arguments.poisson_ratio,
+    )
+    lines = [
+        f"{'custom ' + arguments.shape if custom else arguments.object} pressed at "
+        + ", ".join(f"{force:g}" for force in result.forces)
+        + f" N on {arguments.sensor}",
+        "verdict: " + ("deformable" if result.deformable else "rigid"),
+        f"object stiffness: {result.stiffness:.3g} N/m (pad {result.pad_stiffness:.3g} N/m)",
+        "height: " + " / ".join(f"{h * 1e3:.2f}" for h in result.heights) + " mm",
+        "contact area: " + " -> ".join(f"{a:.0f}" for a in result.area_pixels) + " pixels",
+    ]
+    return _emit(arguments, result.to_dict(), lines)
+
+
+def _recognize(arguments: argparse.Namespace) -> int:
+    from taxel.active import ModelLibrary, build_model_library, recognize_object
+
+    library = _file_or_build(
+        arguments.library,
+        ModelLibrary.load,
+        lambda path: build_model_library(sensor=arguments.sensor, path=path),
+        "model library",
+    )
+    result = recognize_object(
+        arguments.object, library=library, sensor=arguments.sensor, rng=arguments.seed
+    )
+    lines = [
+        f"touched a {arguments.object} {result.n_touches} time(s) on {arguments.sensor}",
+        "ranked candidates:",
+    ]
+    lines += [f"  {name:12} score {score:.3f}" for name, score, _ in result.candidates]
+    lines.append(f"recognized as: {result.name}")
+    return _emit(arguments, result.to_dict(), lines)
+
+
 def _add(
     group: argparse._SubParsersAction,
     name: str,
@@ -115,4 +213,73 @@ def register(commands: argparse._SubParsersAction) -> None:
         type=float,
         default=3.0,
         help="how far the starting guess is from the corner [mm]",
+    )
+    edge = _add(
+        group,
+        "edge-radius",
+        "the radius of an edge from a light and a firm press "
+        "against an empirical table (Ellis, section 2.2)",
+        _edge_radius,
+    )
+    edge.add_argument(
+        "--radius-mm",
+        type=float,
+        required=True,
+        help="radius of the simulated edge to measure [mm]",
+    )
+    edge.add_argument("--sensor", default="vhdta128", help="sensor preset")
+    edge.add_argument(
+        "--table",
+        metavar="TABLE.json",
+        help="the empirical table: loaded if it exists, else built and saved",
+    )
+    edge.add_argument("--x-mm", type=float, default=0.0, help="edge position x [mm]")
+    edge.add_argument("--y-mm", type=float, default=0.0, help="edge position y [mm]")
+    edge.add_argument("--angle-deg", type=float, default=0.0, help="edge direction [deg]")
+    stiff = _add(
+        group,
+        "stiffness",
+        "deformation and stiffness from a light and a firm "
+        "press: rigid or deformable (Ellis, section 2.2)",
+        _stiffness,
+    )
+    stiff.add_argument(
+        "--object",
+        default="racquet ball",
+        help="named object (racquet ball, acrylic sphere, steel ball, ...)",
+    )
+    stiff.add_argument("--shape", choices=("ball", "cube"), help="or a custom ball or cube")
+    stiff.add_argument("--size-mm", type=float, help="its radius or half edge [mm]")
+    stiff.add_argument("--modulus-mpa", type=float, help="its Young's modulus [MPa]")
+    stiff.add_argument("--poisson-ratio", type=float, help="its Poisson's ratio")
+    stiff.add_argument(
+        "--forces",
+        type=float,
+        nargs=2,
+        default=(12.0, 39.0),
+        metavar=("LIGHT", "FIRM"),
+        help="the two forces [N] (12 39)",
+    )
+    stiff.add_argument("--sensor", default="vhdta128", help="sensor preset")
+    stiff.add_argument(
+        "--calibration",
+        metavar="PAD.json",
+        help="pad calibration: loaded if it exists, else built and saved",
+    )
+    recognize = _add(
+        group,
+        "recognize",
+        "recognize an object from up to three touches " "against a library of models",
+        _recognize,
+    )
+    recognize.add_argument(
+        "--object",
+        required=True,
+        help="the model to touch (washer, coin, key blank, bolt head, " "box corner, pen, can)",
+    )
+    recognize.add_argument("--sensor", default="vhdta128", help="sensor preset")
+    recognize.add_argument(
+        "--library",
+        metavar="LIBRARY.json",
+        help="model library: loaded if it exists, else built and saved",
     )
