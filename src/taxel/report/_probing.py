@@ -56,7 +56,7 @@ def slot_corner_normal(context: DemoContext) -> Experiment:
     )
     corner_features = extract(corner_frame.raw, sensor)
     # a surface normal from 5 probes, and a box corner from probing three faces
-    trials = 3 if context.quick else 10
+    trials = 2 if context.quick else 10
     planes = [
         plane_probing_trial("resistive16", n_probes=5, seed=context.seed + i)
         for i in range(trials)

@@ -8,6 +8,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from taxel.report._active_seed import deformation, edge_radius
 from taxel.report._context import DemoContext
 from taxel.report._design import harmon_criteria
 from taxel.report._html import render_html
@@ -28,6 +29,8 @@ EXPERIMENTS: tuple[ExperimentFunction, ...] = (
     can_top,
     washer,
     texture_table,
+    deformation,
+    edge_radius,
     slot_corner_normal,
     forward_problem,
     inverse_problem,
