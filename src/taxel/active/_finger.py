@@ -116,14 +116,15 @@ class SimulatedFinger:
                 )
         else:
             check_positive("depth", depth)
-        distances = self._distances(self._pose)
+        per_object = self._object_distances(self._pose)
+        distances = np.min(per_object, axis=0)
         if not np.isfinite(distances).any() or np.nanmin(distances) > self.reach:
             raise ValueError(
                 f"no object within the finger's reach ({self.reach * 1e3:g} mm) along the "
                 "sensor normal; the finger did not move"
             )
         first_touch = float(np.nanmin(distances))
-        nearest = self._nearest_object(self._pose)
+        nearest = self._scene[int(np.argmin([np.min(each) for each in per_object]))]
         heights = np.where(np.isfinite(distances), distances - first_touch, np.inf)
         initial = self._last if self._last is not None and normal_force is not None else None
         if initial is not None and not np.isfinite(heights[initial.contact]).all():
@@ -186,19 +187,14 @@ class SimulatedFinger:
         local = np.stack([x, y, np.zeros_like(x)], axis=-1)
         return transform_points(pose, local.reshape(-1, 3)).reshape(*x.shape, 3)
 
-    def _distances(self, pose: np.ndarray) -> np.ndarray:
+    def _object_distances(self, pose: np.ndarray) -> list[np.ndarray]:
+        """Each object's distance along the sensor normal from every load-grid cell [m]."""
         origins = self._cell_origins(pose)
         normal = transform_directions(pose, [0.0, 0.0, 1.0])
-        distances = np.full(origins.shape[:-1], np.inf)
-        for item in self._scene:
-            np.minimum(distances, item.ray_distances(origins, normal), out=distances)
-        return distances
+        return [item.ray_distances(origins, normal) for item in self._scene]
 
-    def _nearest_object(self, pose: np.ndarray) -> SceneObject:
-        origins = self._cell_origins(pose)
-        normal = transform_directions(pose, [0.0, 0.0, 1.0])
-        nearest = [float(np.min(item.ray_distances(origins, normal))) for item in self._scene]
-        return self._scene[int(np.argmin(nearest))]
+    def _distances(self, pose: np.ndarray) -> np.ndarray:
+        return np.min(self._object_distances(pose), axis=0)
 
     def _reading(self, contact: ContactResult, travel: float) -> ProbeReading:
         frame = self._sensor.frame_from_pressure(
