@@ -110,3 +110,79 @@ def test_nan_frame_and_missing_file(tmp_path, capsys):
     missing = str(tmp_path / "missing.npy")
     assert main(["reconstruct", missing, "--sensor", "resistive16", "--out", out]) == 2
     assert "`FRAME` must be an existing .npy file" in capsys.readouterr().err
+
+
+def test_raw_frames_need_a_calibration_and_nothing_is_overwritten(tmp_path, capsys):
+    import numpy as np
+
+    from taxel.cli import main
+
+    raw = tmp_path / "raw.npy"
+    assert (
+        main(
+            [
+                "simulate",
+                "--sensor",
+                "resistive16",
+                "--object",
+                "sphere",
+                "--force",
+                "2",
+                "--seed",
+                "1",
+                "--out",
+                str(raw),
+            ]
+        )
+        == 0
+    )
+    out = tmp_path / "pressure.npy"
+    assert main(["reconstruct", str(raw), "--sensor", "resistive16", "--out", str(out)]) == 2
+    assert "holds raw codes" in capsys.readouterr().err and not out.exists()
+    calibration = tmp_path / "cal.npz"
+    assert main(["calibrate", "--sensor", "resistive16", "--out", str(calibration)]) == 0
+    assert (
+        main(
+            [
+                "reconstruct",
+                str(raw),
+                "--sensor",
+                "resistive16",
+                "--calibration",
+                str(calibration),
+                "--order",
+                "1",
+                "--out",
+                str(out),
+                "--json",
+            ]
+        )
+        == 0
+    )
+    summary = json.loads(capsys.readouterr().out.splitlines()[-1])
+    assert summary["normal_force"] == pytest.approx(2.0, rel=0.05)
+    before = np.load(raw)
+    for target, flags, message in (
+        (out, [], "exists; pass --overwrite"),
+        (raw, ["--overwrite"], "is an input file"),
+    ):
+        assert (
+            main(
+                [
+                    "reconstruct",
+                    str(raw),
+                    "--sensor",
+                    "resistive16",
+                    "--calibration",
+                    str(calibration),
+                    "--out",
+                    str(target),
+                    *flags,
+                ]
+            )
+            == 2
+        )
+        assert message in capsys.readouterr().err
+    assert np.array_equal(np.load(raw), before)
+    assert main(["calibrate", "--sensor", "resistive16", "--out", str(calibration)]) == 2
+    assert "exists" in capsys.readouterr().err

@@ -74,9 +74,9 @@ def test_fit_refuses_to_overwrite_unless_forced(folders, tmp_path, capsys):
     model_path.write_text("keep me")
     assert main(["texture", "fit", str(train), "--out", str(model_path)]) == 2
     error = capsys.readouterr().err
-    assert error == f"taxel texture: error: {model_path} exists; pass --force to overwrite it\n"
+    assert error == f"taxel texture: error: {model_path} exists; pass --overwrite to replace it\n"
     assert model_path.read_text() == "keep me"
-    assert main(["texture", "fit", str(train), "--out", str(model_path), "--force"]) == 0
+    assert main(["texture", "fit", str(train), "--out", str(model_path), "--overwrite"]) == 0
     assert TextureClassifier.load(model_path).n_neighbors == 1
 
 

@@ -9,12 +9,15 @@ def test_public_names():
         "CPM_FINGER_ASSUMED",
         "FabricSlideRecording",
         "TactileSequence",
+        "check_new_file",
         "cpm_finger_sensor",
         "list_fabricslide_files",
         "parse_fabricslide_name",
         "read_fabricslide",
         "read_frame",
         "read_sequence",
+        "write_frame",
+        "write_text",
     ]
     for name in taxel.io.__all__:
         assert name in taxel.io.__doc__

@@ -122,6 +122,16 @@ def _run(arguments: argparse.Namespace) -> int:
     from taxel.io import read_frame
 
     pitch = _pitch(arguments)
+    if arguments.figure:
+        from taxel.io import check_new_file
+
+        check_new_file(
+            arguments.figure,
+            suffix=".png",
+            overwrite=arguments.overwrite,
+            name="--figure",
+            inputs=(arguments.file,),
+        )
     image = read_frame(arguments.file)
     pose = None if arguments.pose is None else _load_pose(Path(arguments.pose))
     features = extract(image, pitch, pose=pose, calibrated=arguments.calibrated)
@@ -158,4 +168,5 @@ def register(commands: Any) -> None:
     parser.add_argument("--calibrated", action="store_true", help="the image holds pressure [Pa]")
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
     parser.add_argument("--figure", metavar="PNG", help="also draw the features to this file")
+    parser.add_argument("--overwrite", action="store_true", help="replace an existing --figure")
     parser.set_defaults(handler=_run)

@@ -16,6 +16,7 @@ EXIT_USAGE = 2
 # each subcommand module (taxel/cli/_NAME.py) exposes register(commands)
 _SUBCOMMANDS = (
     "_active",
+    "_calibrate",
     "_demo",
     "_design",
     "_features",

@@ -24,13 +24,28 @@ def _run(arguments: argparse.Namespace) -> int:
             f"`--sensor` must be one of {', '.join(FORWARD_MODEL_PRESETS)}; "
             f"got {arguments.sensor!r}"
         )
+    from taxel.io import check_new_file, write_frame
+
     path = Path(arguments.frame)
     if not path.is_file():
         raise ValueError(f"`FRAME` must be an existing .npy file, got {str(path)!r}")
-    try:
+    check_new_file(
+        arguments.out, suffix=".npy", overwrite=arguments.overwrite, name="--out", inputs=(path,)
+    )
+    try:  # NaN is allowed: it marks dead taxels, left out of the fit
         frame = np.load(path, allow_pickle=False)
     except ValueError as error:
         raise ValueError(f"`FRAME` is not a readable .npy array: {error}") from None
+    stored = frame.dtype
+    if arguments.calibration is not None:
+        from taxel.sensor import Calibration
+
+        frame = Calibration.load(arguments.calibration).felt_pressure(frame)
+    elif np.issubdtype(stored, np.integer):
+        raise ValueError(
+            f"`FRAME` {str(path)!r} holds raw codes ({stored}); give the sensor's "
+            "calibration with --calibration CAL.npz (made by `taxel calibrate`)"
+        )
     spec = forward_model_preset(arguments.sensor, oversampling=arguments.oversampling)
     result = reconstruct(
         frame,
@@ -40,7 +55,7 @@ def _run(arguments: argparse.Namespace) -> int:
         regularization=arguments.regularization,
         noise_level=arguments.noise_level,
     )
-    np.save(arguments.out, result.pressure)
+    write_frame(arguments.out, result.pressure, overwrite=arguments.overwrite, inputs=(path,))
     summary = {
         "sensor": arguments.sensor,
         "method": result.method,
@@ -87,7 +102,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         description="Recover the pressure on the load grid from calibrated taxel readings "
         "(a .npy frame, or a batch of frames) with regularization chosen automatically.",
     )
-    parser.add_argument("frame", metavar="FRAME.npy", help="calibrated readings, rows x cols")
+    parser.add_argument(
+        "frame", metavar="FRAME.npy", help="calibrated readings (or raw codes with --calibration)"
+    )
     parser.add_argument("--sensor", required=True, metavar="PRESET", help="vhdta128, resistive16")
     parser.add_argument(
         "--method", default="tikhonov", choices=("tikhonov", "tsvd", "nonneg", "tv")
@@ -103,5 +120,11 @@ def register(commands: argparse._SubParsersAction) -> None:
     parser.add_argument("--noise-level", type=float, default=None, help="reading noise std")
     parser.add_argument("--oversampling", type=int, default=1, help="load cells per taxel")
     parser.add_argument("--out", required=True, metavar="PRESSURE.npy", help="output map")
+    parser.add_argument(
+        "--calibration",
+        metavar="CAL.npz",
+        help="per-taxel calibration of raw frames (from `taxel calibrate`)",
+    )
+    parser.add_argument("--overwrite", action="store_true", help="replace an existing --out")
     parser.add_argument("--json", action="store_true", help="print a JSON summary")
     parser.set_defaults(handler=_run)

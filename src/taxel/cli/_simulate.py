@@ -12,23 +12,15 @@ import argparse
 import dataclasses
 import json
 import sys
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from taxel.cli._arguments import finite, integer_in, positive, seed
 from taxel.cli._main import CommandLineError
+from taxel.io import check_new_file
 
 __all__ = ["register"]
-
-
-def _check_new(path: Path, suffix: str, flag: str, overwrite: bool) -> Path:
-    if path.suffix.lower() != suffix:
-        raise CommandLineError(f"{flag} must name a {suffix} file, got {str(path)!r}")
-    if path.exists() and not overwrite:
-        raise FileExistsError(f"{path} exists; pass --overwrite to replace it")
-    return path
 
 
 def _default_position(indenter: Any) -> tuple[float, float]:
@@ -67,10 +59,12 @@ def _run(arguments: argparse.Namespace) -> int:
     from taxel.mechanics import make_indenter
     from taxel.sensor import make_sensor
 
-    out = _check_new(Path(arguments.out), ".npy", "--out", arguments.overwrite)
+    out = check_new_file(arguments.out, suffix=".npy", overwrite=arguments.overwrite, name="--out")
     truth = None
     if arguments.truth is not None:
-        truth = _check_new(Path(arguments.truth), ".npz", "--truth", arguments.overwrite)
+        truth = check_new_file(
+            arguments.truth, suffix=".npz", overwrite=arguments.overwrite, name="--truth"
+        )
         if truth.resolve() == out.resolve():
             raise CommandLineError("--truth must differ from --out")
     sensor = make_sensor(arguments.sensor)

@@ -43,8 +43,8 @@ def _features(path: Path, settings: Mapping[str, Any]) -> np.ndarray:
 
 def _fit(arguments: argparse.Namespace) -> int:
     out = Path(arguments.out)
-    if out.exists() and not arguments.force:
-        raise FileExistsError(f"{out} exists; pass --force to overwrite it")
+    if out.exists() and not arguments.overwrite:
+        raise FileExistsError(f"{out} exists; pass --overwrite to replace it")
     files = [path for folder in arguments.directories for path in list_fabricslide_files(folder)]
     settings = {
         "reader": "fabricslide",
@@ -57,7 +57,7 @@ def _fit(arguments: argparse.Namespace) -> int:
     model = fit_texture_classifier(
         features, labels, n_neighbors=arguments.neighbors, settings=settings
     )
-    model.save(out, overwrite=arguments.force)
+    model.save(out, overwrite=arguments.overwrite)
     counts = ", ".join(f"{label} {labels.count(label)}" for label in model.classes)
     print(f"fitted {len(files)} recordings of {len(model.classes)} classes ({counts}) -> {out}")
     return 0
@@ -102,7 +102,7 @@ def register(commands: Any) -> None:
     )
     fit.add_argument("directories", nargs="+", metavar="DIR", help="folders of recordings")
     fit.add_argument("--out", required=True, metavar="MODEL.json", help="model file to write")
-    fit.add_argument("--force", action="store_true", help="overwrite an existing model file")
+    fit.add_argument("--overwrite", action="store_true", help="replace an existing model file")
     fit.add_argument(
         "--neighbors", type=integer_in(1), default=1, metavar="K", help="neighbours that vote (1)"
     )

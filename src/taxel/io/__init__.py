@@ -1,4 +1,4 @@
-"""Readers of tactile frames, sequences and recordings.
+"""Readers and writers of tactile frames, sequences and recordings.
 
 Every reader validates the file: a missing file raises `FileNotFoundError` naming it; an
 empty, truncated, ragged, corrupt or non-numeric one raises `ValueError` naming the file and,
@@ -7,6 +7,10 @@ for text, the line.
 Frames and sequences (npy, npz, png, tif, csv)
 ----------------------------------------------
 read_frame, read_sequence, TactileSequence
+
+Writing (never over an existing file unless asked; never over an input)
+-------------------------------------------------------------------------
+write_frame, write_text, check_new_file
 
 FabricSlide recordings (capacitive finger sliding over fabrics)
 ---------------------------------------------------------------
@@ -23,16 +27,20 @@ from taxel.io._fabricslide import (
     read_fabricslide,
 )
 from taxel.io._frames import TactileSequence, read_frame, read_sequence
+from taxel.io._writers import check_new_file, write_frame, write_text
 
 __all__ = [
     "CPM_FINGER",
     "CPM_FINGER_ASSUMED",
     "FabricSlideRecording",
     "TactileSequence",
+    "check_new_file",
     "cpm_finger_sensor",
     "list_fabricslide_files",
     "parse_fabricslide_name",
     "read_fabricslide",
     "read_frame",
     "read_sequence",
+    "write_frame",
+    "write_text",
 ]

@@ -1,0 +1,45 @@
+"""``taxel calibrate``: a preset sensor's per-taxel calibration from flat-plate presses."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from taxel.cli._arguments import seed
+
+__all__ = ["register"]
+
+
+def _run(arguments: argparse.Namespace) -> int:
+    from taxel.io import check_new_file
+    from taxel.sensor import calibrate, calibration_error, make_sensor
+
+    out = check_new_file(arguments.out, suffix=".npz", overwrite=arguments.overwrite, name="--out")
+    sensor = make_sensor(arguments.sensor)
+    calibration = calibrate(sensor, rng=arguments.seed)
+    error = calibration_error(sensor, calibration)
+    calibration.save(out, overwrite=arguments.overwrite)
+    excluded = int((~calibration.valid).sum())
+    sys.stdout.write(
+        f"calibrated {sensor.name} with flat-plate presses up to {sensor.full_scale / 1e3:.4g} "
+        f"kPa; {excluded} taxel(s) excluded (dead, stuck or pinned)\n"
+        f"round trip: worst {error.worst:.2%} of full scale, rms {error.rms:.2%}\n"
+        f"written to {out}\n"
+    )
+    return 0
+
+
+def register(commands: argparse._SubParsersAction) -> None:
+    """Add ``taxel calibrate`` to the command line."""
+    parser = commands.add_parser(
+        "calibrate",
+        help="calibrate a preset sensor from flat-plate presses",
+        description="Press a flat plate on the whole array at a set of pressures (with the "
+        "sensor's noise), fit a monotonic map raw -> pressure per taxel, mask dead and stuck "
+        "taxels, and save the calibration (.npz) for `taxel reconstruct --calibration`.",
+    )
+    parser.add_argument("--sensor", required=True, metavar="PRESET", help="sensor preset")
+    parser.add_argument("--out", required=True, metavar="CAL.npz", help="calibration file")
+    parser.add_argument("--seed", type=seed, default=0, help="noise seed of the presses (0)")
+    parser.add_argument("--overwrite", action="store_true", help="replace an existing --out")
+    parser.set_defaults(handler=_run)

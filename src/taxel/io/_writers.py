@@ -1,0 +1,110 @@
+"""Writers: every file taxel writes goes through here, and nothing is overwritten by accident."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = ["check_new_file", "write_frame", "write_text"]
+
+
+def check_new_file(
+    path: str | os.PathLike[str],
+    *,
+    suffix: str | None = None,
+    overwrite: bool = False,
+    name: str = "path",
+    inputs: tuple[str | os.PathLike[str], ...] = (),
+) -> Path:
+    """Check that `path` may be written, and return it as a Path.
+
+    It must have the right suffix, lie in a folder that exists, not be an existing file
+    (unless `overwrite`), and never be one of the `inputs`.
+
+    Raises
+    ------
+    ValueError
+        Wrong suffix, a missing folder, or the path of an input file.
+    FileExistsError
+        The file exists and `overwrite` is False.
+
+    Examples
+    --------
+    >>> check_new_file("frame.txt", suffix=".npy")
+    Traceback (most recent call last):
+    ...
+    ValueError: `path` must name a .npy file, got 'frame.txt'
+    """
+    target = Path(path)
+    label = name if name.startswith("--") else f"`{name}`"  # a flag, or a parameter
+    if suffix is not None and target.suffix.lower() != suffix:
+        raise ValueError(f"{label} must name a {suffix} file, got {str(target)!r}")
+    if not target.parent.exists():
+        raise ValueError(f"{label} is in a folder that does not exist: {str(target.parent)!r}")
+    for source in inputs:
+        if Path(source).exists() and target.exists() and target.samefile(source):
+            raise ValueError(f"{label} {str(target)!r} is an input file; choose another")
+    if target.exists() and not overwrite:
+        how = "--overwrite" if name.startswith("--") else "overwrite=True"
+        raise FileExistsError(f"{target} exists; pass {how} to replace it")
+    return target
+
+
+def _atomic(target: Path, write: Callable[[Path], Any]) -> Path:
+    """Write to a temporary file beside `target`, then rename: no half-written files."""
+    temporary = target.with_name(f".{target.name}.partial")
+    try:
+        write(temporary)
+        os.replace(temporary, target)
+    finally:
+        if temporary.exists():
+            temporary.unlink()
+    return target
+
+
+def write_frame(
+    path: str | os.PathLike[str],
+    frame: Any,
+    *,
+    overwrite: bool = False,
+    inputs: tuple[str | os.PathLike[str], ...] = (),
+) -> Path:
+    """Save one frame (or any array) as a .npy file, refusing to overwrite an existing file.
+
+    Parameters
+    ----------
+    path : path
+        The .npy file to write.
+    frame : array_like
+        The data.
+    overwrite : bool, default False
+        Replace an existing file.
+    inputs : tuple of path
+        Files the caller read from: writing over one of them is refused even with
+        `overwrite`.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    target = check_new_file(path, suffix=".npy", overwrite=overwrite, inputs=inputs)
+    array = np.asarray(frame)
+
+    def save(temporary: Path) -> None:
+        with open(temporary, "wb") as handle:
+            np.save(handle, array)
+
+    return _atomic(target, save)
+
+
+def write_text(
+    path: str | os.PathLike[str], text: str, *, overwrite: bool = False, suffix: str | None = None
+) -> Path:
+    """Write a text file (JSON, HTML, ...), refusing to overwrite an existing file."""
+    target = check_new_file(path, suffix=suffix, overwrite=overwrite)
+    return _atomic(target, lambda temporary: temporary.write_text(text, encoding="utf-8"))

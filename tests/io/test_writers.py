@@ -1,0 +1,34 @@
+import numpy as np
+import pytest
+
+from taxel.io import check_new_file, read_frame, write_frame, write_text
+
+
+def test_write_frame_round_trip_and_refuses_to_overwrite(tmp_path):
+    target = tmp_path / "frame.npy"
+    write_frame(target, np.arange(6.0).reshape(2, 3))
+    assert np.array_equal(read_frame(target), np.arange(6.0).reshape(2, 3))
+    with pytest.raises(FileExistsError, match="frame.npy exists"):
+        write_frame(target, np.zeros((2, 3)))
+    assert read_frame(target)[1, 2] == 5.0  # untouched
+    write_frame(target, np.zeros((2, 3)), overwrite=True)
+    assert read_frame(target).sum() == 0.0
+    assert [path.name for path in tmp_path.iterdir()] == ["frame.npy"]  # no leftovers
+
+
+def test_never_over_an_input_even_when_asked(tmp_path):
+    source = tmp_path / "in.npy"
+    write_frame(source, np.ones((2, 2)))
+    with pytest.raises(ValueError, match="is an input file"):
+        write_frame(source, np.zeros((2, 2)), overwrite=True, inputs=(source,))
+    assert read_frame(source).sum() == 4.0
+
+
+def test_bad_targets_are_named(tmp_path):
+    with pytest.raises(ValueError, match="must name a .npy file"):
+        write_frame(tmp_path / "frame.csv", np.ones(3))
+    with pytest.raises(ValueError, match="folder that does not exist"):
+        check_new_file(tmp_path / "missing" / "x.npy")
+    write_text(tmp_path / "a.json", "{}")
+    with pytest.raises(FileExistsError):
+        write_text(tmp_path / "a.json", "[]")
