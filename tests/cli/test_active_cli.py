@@ -30,7 +30,7 @@ def test_locate_corner(capsys):
 @pytest.mark.parametrize(
     ("arguments", "message"),
     [
-        (["active", "probe-plane", "--probes", "2"], "`n_probes` must be an integer >= 3"),
+        (["active", "probe-plane", "--probes", "2"], "argument --probes: must be >= 3, got 2"),
         (["active", "probe-plane", "--sensor", "piezo8x8"], "piezo8x8"),
         (["active", "probe-plane", "--sensor", "nothing"], "`sensor`"),
         (["active"], "the following arguments are required: PROCEDURE"),
@@ -97,3 +97,31 @@ def test_recognize_ranks_the_candidates(capsys, small_files):
         == 0
     )
     assert "recognized as: washer" in capsys.readouterr().out
+
+
+def test_stiffness_of_a_custom_ball_and_bad_files(capsys, small_files, tmp_path):
+    pad = str(small_files / "pad.json")
+    assert (
+        main(
+            [
+                "active",
+                "stiffness",
+                "--shape",
+                "ball",
+                "--size-mm",
+                "10",
+                "--modulus-mpa",
+                "1",
+                "--calibration",
+                pad,
+                "--json",
+            ]
+        )
+        == 0
+    )
+    assert json.loads(capsys.readouterr().out)["deformable"] is True  # 1 MPa: softer than the pad
+    broken = tmp_path / "broken.json"
+    broken.write_text('{"format": "taxel.pad_calibration"}')
+    assert main(["active", "stiffness", "--calibration", str(broken)]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and "lacks forces_n" in error

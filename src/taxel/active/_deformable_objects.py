@@ -87,7 +87,9 @@ def make_deformation_object(
     base = known or ("ball", 0.0, 0.0, 0.5)
     shape = shape or base[0]
     size = check_positive("size", size if size is not None else base[1])
-    modulus = check_positive("youngs_modulus", youngs_modulus or base[2])
+    modulus = check_positive(
+        "youngs_modulus", youngs_modulus if youngs_modulus is not None else base[2]
+    )
     material = ElasticMaterial(modulus, poisson_ratio if poisson_ratio is not None else base[3])
     if shape == "ball":
         return make_ball(name, size, material)

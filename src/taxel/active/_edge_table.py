@@ -12,7 +12,6 @@ sensor), and the spread of each descriptor about those lines (its noise).
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from collections.abc import Sequence
@@ -25,6 +24,7 @@ from scipy.interpolate import PchipInterpolator
 
 from taxel._validation import as_finite_array
 from taxel.active._edge_section import SECTION_DESCRIPTORS, EdgeCrossSection
+from taxel.active._json_files import read_json, write_json
 
 __all__ = ["EdgeRadiusTable", "fit_edge_radius_table"]
 
@@ -199,22 +199,28 @@ class EdgeRadiusTable:
             "spreads": self.spreads.tolist(),
         }
 
-    def save(self, path: str | os.PathLike[str]) -> Path:
-        """Write the table as JSON; return the path."""
-        target = Path(path)
-        target.write_text(json.dumps(self.to_dict(), indent=1))
-        return target
+    def save(self, path: str | os.PathLike[str], *, overwrite: bool = False) -> Path:
+        """Write the table as JSON (an existing file only with `overwrite`)."""
+        return write_json(path, self.to_dict(), overwrite=overwrite)
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> EdgeRadiusTable:
         """Read a table written by `save`."""
         source = Path(path)
-        try:
-            data = json.loads(source.read_text())
-        except json.JSONDecodeError as error:
-            raise ValueError(f"`path` {str(source)!r} is not a JSON file: {error}") from None
-        if not isinstance(data, dict) or data.get("format") != _FORMAT:
-            raise ValueError(f"`path` {str(source)!r} is not an edge radius table")
+        data = read_json(
+            source,
+            _FORMAT,
+            (
+                "radii_m",
+                "forces_n",
+                "reference_loads_n_per_m",
+                "intercepts",
+                "slopes",
+                "spreads",
+                "descriptors",
+            ),
+            "an edge radius table",
+        )
         if data.get("descriptors") != list(SECTION_DESCRIPTORS):
             raise ValueError(f"`path` {str(source)!r} holds other descriptors than this version")
         return cls(

@@ -7,7 +7,6 @@ procedure touches an unknown object, so that the two are comparable feature by f
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from dataclasses import dataclass
@@ -17,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from taxel._validation import as_finite_array, check_positive
+from taxel.active._json_files import read_json, write_json
 
 __all__ = ["ModelLibrary"]
 
@@ -187,22 +187,28 @@ class ModelLibrary:
             ],
         }
 
-    def save(self, path: str | os.PathLike[str]) -> Path:
-        """Write the library as JSON; return the path."""
-        target = Path(path)
-        target.write_text(json.dumps(self.to_dict()))
-        return target
+    def save(self, path: str | os.PathLike[str], *, overwrite: bool = False) -> Path:
+        """Write the library as JSON (an existing file only with `overwrite`)."""
+        return write_json(path, self.to_dict(), overwrite=overwrite)
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> ModelLibrary:
         """Read a library written by `save`."""
         source = Path(path)
-        try:
-            data = json.loads(source.read_text())
-        except json.JSONDecodeError as error:
-            raise ValueError(f"`path` {str(source)!r} is not a JSON file: {error}") from None
-        if not isinstance(data, dict) or data.get("format") != _FORMAT:
-            raise ValueError(f"`path` {str(source)!r} is not a model library")
+        data = read_json(
+            source,
+            _FORMAT,
+            (
+                "names",
+                "templates",
+                "labels",
+                "scales",
+                "feature_names",
+                "normal_force_n",
+                "step_m",
+            ),
+            "a model library",
+        )
         templates = np.array(
             [[np.nan if v is None else v for v in row] for row in data["templates"]], float
         )

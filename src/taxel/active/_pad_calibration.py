@@ -12,7 +12,6 @@ the known surface, and keep it against the size of the imprint's core (`core_are
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from collections.abc import Sequence
@@ -26,6 +25,7 @@ from scipy import ndimage
 from taxel._validation import as_finite_array, check_positive
 from taxel.active._deformable_objects import make_block
 from taxel.active._finger import SimulatedFinger
+from taxel.active._json_files import read_json, write_json
 from taxel.active._scene import ProfileObject, make_ball
 from taxel.features import prepare
 from taxel.frames import make_pose
@@ -152,22 +152,17 @@ class PadCalibration:
             "compressions_m": self.compressions.tolist(),
         }
 
-    def save(self, path: str | os.PathLike[str]) -> Path:
-        """Write the calibration as JSON; return the path."""
-        target = Path(path)
-        target.write_text(json.dumps(self.to_dict(), indent=1))
-        return target
+    def save(self, path: str | os.PathLike[str], *, overwrite: bool = False) -> Path:
+        """Write the calibration as JSON (an existing file only with `overwrite`)."""
+        return write_json(path, self.to_dict(), overwrite=overwrite)
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> PadCalibration:
         """Read a calibration written by `save`."""
         source = Path(path)
-        try:
-            data = json.loads(source.read_text())
-        except json.JSONDecodeError as error:
-            raise ValueError(f"`path` {str(source)!r} is not a JSON file: {error}") from None
-        if not isinstance(data, dict) or data.get("format") != _FORMAT:
-            raise ValueError(f"`path` {str(source)!r} is not a pad calibration")
+        data = read_json(
+            source, _FORMAT, ("forces_n", "areas_m2", "compressions_m"), "a pad calibration"
+        )
         return cls(
             forces=np.array(data["forces_n"], float),
             areas=np.array(data["areas_m2"], float),

@@ -14,6 +14,8 @@ import sys
 from collections.abc import Callable
 from typing import Any
 
+from taxel.cli._arguments import finite, integer_in, positive, real_in, seed
+
 __all__ = ["register"]
 
 
@@ -125,7 +127,7 @@ def _stiffness(arguments: argparse.Namespace) -> int:
     )
     custom = arguments.shape is not None
     result = measure_deformation(
-        None if custom else arguments.object,
+        "custom " + arguments.shape if custom else arguments.object,
         sensor=arguments.sensor,
         forces=tuple(arguments.forces),
         calibration=calibration,
@@ -176,7 +178,7 @@ def _add(
 ) -> argparse.ArgumentParser:
     parser = group.add_parser(name, help=help_text, description=help_text)
     parser.add_argument("--json", action="store_true", help="print the result as JSON")
-    parser.add_argument("--seed", type=int, default=0, help="random seed of the trial")
+    parser.add_argument("--seed", type=seed, default=0, help="random seed of the trial")
     parser.set_defaults(handler=handler)
     return parser
 
@@ -194,23 +196,28 @@ def register(commands: argparse._SubParsersAction) -> None:
         _probe_plane,
     )
     plane.add_argument("--sensor", default="resistive16", help="static sensor preset")
-    plane.add_argument("--probes", type=int, default=5, help="number of presses (>= 3)")
-    plane.add_argument("--force", type=float, default=5.0, help="press force [N]")
+    plane.add_argument("--probes", type=integer_in(3), default=5, help="number of presses (>= 3)")
+    plane.add_argument("--force", type=positive, default=5.0, help="press force [N]")
     plane.add_argument(
-        "--face-tilt-deg", type=float, default=15.0, help="largest tilt of the face [deg]"
+        "--face-tilt-deg", type=positive, default=15.0, help="largest tilt of the face [deg]"
     )
     plane.add_argument(
-        "--pose-tilt-deg", type=float, default=10.0, help="largest tilt of the probing poses [deg]"
+        "--pose-tilt-deg",
+        type=positive,
+        default=10.0,
+        help="largest tilt of the probing poses [deg]",
     )
     corner = _add(
         group, "locate-corner", "a box corner from probing its three faces", _locate_corner
     )
     corner.add_argument("--sensor", default="resistive16", help="static sensor preset")
-    corner.add_argument("--probes-per-face", type=int, default=3, help="presses on each face")
-    corner.add_argument("--force", type=float, default=5.0, help="press force [N]")
+    corner.add_argument(
+        "--probes-per-face", type=integer_in(1), default=3, help="presses on each face"
+    )
+    corner.add_argument("--force", type=positive, default=5.0, help="press force [N]")
     corner.add_argument(
         "--guess-error-mm",
-        type=float,
+        type=positive,
         default=3.0,
         help="how far the starting guess is from the corner [mm]",
     )
@@ -223,7 +230,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     )
     edge.add_argument(
         "--radius-mm",
-        type=float,
+        type=positive,
         required=True,
         help="radius of the simulated edge to measure [mm]",
     )
@@ -233,9 +240,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         metavar="TABLE.json",
         help="the empirical table: loaded if it exists, else built and saved",
     )
-    edge.add_argument("--x-mm", type=float, default=0.0, help="edge position x [mm]")
-    edge.add_argument("--y-mm", type=float, default=0.0, help="edge position y [mm]")
-    edge.add_argument("--angle-deg", type=float, default=0.0, help="edge direction [deg]")
+    edge.add_argument("--x-mm", type=finite, default=0.0, help="edge position x [mm]")
+    edge.add_argument("--y-mm", type=finite, default=0.0, help="edge position y [mm]")
+    edge.add_argument("--angle-deg", type=finite, default=0.0, help="edge direction [deg]")
     stiff = _add(
         group,
         "stiffness",
@@ -248,13 +255,13 @@ def register(commands: argparse._SubParsersAction) -> None:
         default="racquet ball",
         help="named object (racquet ball, acrylic sphere, steel ball, ...)",
     )
-    stiff.add_argument("--shape", choices=("ball", "cube"), help="or a custom ball or cube")
-    stiff.add_argument("--size-mm", type=float, help="its radius or half edge [mm]")
-    stiff.add_argument("--modulus-mpa", type=float, help="its Young's modulus [MPa]")
-    stiff.add_argument("--poisson-ratio", type=float, help="its Poisson's ratio")
+    stiff.add_argument("--shape", choices=("ball", "block"), help="or a custom ball or block")
+    stiff.add_argument("--size-mm", type=positive, help="ball radius or block edge [mm]")
+    stiff.add_argument("--modulus-mpa", type=positive, help="its Young's modulus [MPa]")
+    stiff.add_argument("--poisson-ratio", type=real_in(-0.999, 0.5), help="its Poisson's ratio")
     stiff.add_argument(
         "--forces",
-        type=float,
+        type=positive,
         nargs=2,
         default=(12.0, 39.0),
         metavar=("LIGHT", "FIRM"),

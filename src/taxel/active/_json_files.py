@@ -1,0 +1,46 @@
+"""JSON files of the active procedures (tables, calibrations, libraries): checked both ways."""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from taxel.io import write_text
+
+__all__ = ["read_json", "write_json"]
+
+
+def write_json(
+    path: str | os.PathLike[str], data: dict[str, Any], *, overwrite: bool = False
+) -> Path:
+    """Write `data` as JSON; an existing file is replaced only with `overwrite`."""
+    return write_text(path, json.dumps(data, indent=1), overwrite=overwrite)
+
+
+def read_json(
+    path: str | os.PathLike[str], file_format: str, required: Sequence[str], what: str
+) -> dict[str, Any]:
+    """Read a JSON file written by `write_json` and check its format tag and keys.
+
+    Raises
+    ------
+    ValueError
+        Not JSON, another format, or a missing key: naming the file and what is wrong.
+    """
+    source = Path(path)
+    if not source.is_file():
+        raise FileNotFoundError(f"{str(source)!r} does not exist")
+    try:
+        data = json.loads(source.read_text())
+    except json.JSONDecodeError as error:
+        raise ValueError(f"`path` {str(source)!r} is not a JSON file: {error}") from None
+    if not isinstance(data, dict) or data.get("format") != file_format:
+        raise ValueError(f"`path` {str(source)!r} is not {what}")
+    missing = [key for key in required if key not in data]
+    if missing:
+        keys = ", ".join(missing)
+        raise ValueError(f"`path` {str(source)!r} lacks {keys}: it is not {what} made by taxel")
+    return data
