@@ -220,7 +220,8 @@ def test_planarity_and_normal():
     tilt = math.radians(10)
     depth = 2e-4 + math.tan(tilt) * y
     plane = contact_plane(np.ones((64, 64)), PITCH, depth=depth)
-    assert plane.planarity == 0.0 or plane.normal is None  # uniform image: no contrast
+    # a uniform image has no contact contrast: nothing to fit
+    assert plane.planarity == 0.0 and plane.normal is None and plane.tilt_rad is None
     image = np.where(np.hypot(x, y) < 6e-3, 1.0, 0.0)
     plane = contact_plane(image, PITCH, depth=depth)
     assert plane.tilt_rad == pytest.approx(tilt, abs=1e-6)

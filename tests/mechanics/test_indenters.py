@@ -120,13 +120,18 @@ def test_textures_are_reproducible_and_seeded():
 
 
 def test_textures_are_periodic_on_their_tile():
-    rasp = WoodRasp()
-    # the lattice repeats every tooth pitch along u and every two rows along v
-    u, v = np.array([0.3e-3]), np.array([0.7e-3])
-    assert (
-        rasp.local_heights(u + 3.0e-3 * 14, v) == pytest.approx(rasp.local_heights(u, v), abs=1e-9)
-        or True
-    )  # teeth tips scatter per tooth; the shape repeats, the tip height need not
+    # without tip scatter every tooth is alike: the pattern repeats every tooth pitch along u
+    # and every two rows along v (odd rows are staggered by half a pitch)
+    rasp = WoodRasp(scatter=0.0)
+    u, v = np.random.default_rng(4).uniform(0, 3e-3, (2, 50))
+    base = rasp.local_heights(u, v)
+    # the tile is sampled every 60 um and interpolated linearly across the teeth's kinks
+    # (slope 1.7): a few micrometres, against 0.6 mm for a shift that breaks the pattern
+    tolerance = 5e-6
+    assert np.allclose(rasp.local_heights(u + 3e-3, v), base, atol=tolerance)
+    assert np.allclose(rasp.local_heights(u, v + 5e-3), base, atol=tolerance)
+    assert np.allclose(rasp.local_heights(u + 1.5e-3, v + 2.5e-3), base, atol=tolerance)
+    assert np.abs(rasp.local_heights(u + 1.5e-3, v) - base).max() > 100 * tolerance
     screen = PerforatedScreen(waviness=0.0)
     centre = screen.local_heights(np.array([0.0, 6e-3, 3e-3]), np.array([0.0, 0.0, 6e-3 * 0.866]))
     assert np.all(np.isinf(centre))  # hole centres of the staggered pattern
