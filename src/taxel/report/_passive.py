@@ -70,6 +70,11 @@ def pen_tip(context: DemoContext, *, indenter: str = "pen", force: float = 2.0) 
     )
 
 
+def _compare(firm: str, light: str, greater: bool) -> str:
+    """The firm press's value against the light press's, with the true comparison sign."""
+    return f"{firm} {'>' if greater else '<='} {light}"
+
+
 def _edge_measures(image: np.ndarray, features, pitch: float) -> dict[str, float]:
     """Width [m], mean intensity and cross-section area of a line contact."""
     background = float(np.percentile(image, 5))
@@ -154,19 +159,19 @@ def edge_at_two_forces(
             ),
             Verdict(
                 "width greater at the higher force",
-                rows[0][2] + " > " + rows[0][1] + " mm",
+                _compare(rows[0][2], rows[0][1], grows["width_m"]) + " mm",
                 "greater",
                 grows["width_m"],
             ),
             Verdict(
                 "mean intensity greater",
-                rows[1][2] + " > " + rows[1][1],
+                _compare(rows[1][2], rows[1][1], grows["mean_intensity"]),
                 "greater",
                 grows["mean_intensity"],
             ),
             Verdict(
                 "average cross-section greater",
-                rows[2][2] + " > " + rows[2][1],
+                _compare(rows[2][2], rows[2][1], grows["cross_section_area"]),
                 "greater",
                 grows["cross_section_area"],
             ),
