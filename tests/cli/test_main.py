@@ -59,3 +59,15 @@ def test_demo_refuses_a_file_as_output_folder(capsys, tmp_path, one_experiment):
     assert main(["demo", "--quick", "--no-progress", "--out", str(target)]) == 2
     assert "`out` must be a folder" in capsys.readouterr().err
     assert target.read_text() == "keep me"
+
+
+def test_demo_replaces_only_its_own_files(capsys, tmp_path, one_experiment):
+    assert main(["demo", "--quick", "--no-progress", "--out", str(tmp_path)]) == 0
+    assert main(["demo", "--quick", "--no-progress", "--out", str(tmp_path)]) == 0  # rerun
+    capsys.readouterr()
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "report.html").write_text("<html>my own notes</html>")
+    assert main(["demo", "--quick", "--no-progress", "--out", str(mine)]) == 2
+    assert "was not written by taxel demo" in capsys.readouterr().err
+    assert (mine / "report.html").read_text() == "<html>my own notes</html>"

@@ -53,11 +53,32 @@ class DemoResult:
         return sum(experiment.passed for experiment in self.experiments)
 
 
+_TITLE = "<title>taxel: the seeds' experiments</title>"
+
+
+def _written_by_taxel(path: Path) -> bool:
+    """Whether an existing report.html or results.json came from an earlier demo run."""
+    text = path.read_text(encoding="utf-8", errors="replace")
+    if path.suffix == ".html":
+        return _TITLE in text
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError:
+        return False
+    return isinstance(data, dict) and {"quick", "seconds", "experiments"} <= set(data)
+
+
 def _writable_folder(out: Path) -> Path:
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise ValueError(f"`out` must be a folder, but {out} is a file")
     out.mkdir(parents=True, exist_ok=True)
+    for name in ("report.html", "results.json"):
+        existing = out / name
+        if existing.exists() and not _written_by_taxel(existing):
+            raise FileExistsError(
+                f"{existing} exists and was not written by taxel demo; choose another --out"
+            )
     return out
 
 
