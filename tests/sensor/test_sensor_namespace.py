@@ -22,6 +22,7 @@ def test_public_names():
         "TactileSensor",
         "TaxelFields",
         "TwoPointResolution",
+        "as_sensor",
         "calibrate",
         "calibration_error",
         "density_class",

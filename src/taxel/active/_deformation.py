@@ -26,7 +26,7 @@ from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._scene import SceneObject
 from taxel.features import find_contact, prepare
 from taxel.frames import make_pose, transform_directions
-from taxel.sensor import TactileSensor, make_sensor
+from taxel.sensor import TactileSensor, as_sensor
 
 __all__ = ["Deformation", "DeformationResult", "measure_deformation"]
 
@@ -327,7 +327,7 @@ def measure_deformation(
     >>> result.deformable, round(result.heights[1] * 1e3)  # doctest: +SKIP
     (True, 53)
     """
-    chosen = sensor if isinstance(sensor, TactileSensor) else make_sensor(sensor)
+    chosen = as_sensor(sensor)
     light, firm = (check_positive("forces", force) for force in forces)
     touch = check_positive("touch_force", touch_force)
     if not touch < light < firm:

@@ -26,7 +26,7 @@ from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._scene import ProfileObject
 from taxel.frames import make_pose
 from taxel.mechanics import Cylinder
-from taxel.sensor import TactileSensor, make_sensor
+from taxel.sensor import TactileSensor, as_sensor
 
 __all__ = [
     "DEFAULT_EDGE_RADII",
@@ -82,12 +82,6 @@ def make_edge(
     return ProfileObject(
         name=f"edge r={radius * 1e3:g} mm", pose=pose, profile=Cylinder(radius), top=top
     )
-
-
-def _sensor(sensor: str | TactileSensor) -> TactileSensor:
-    if isinstance(sensor, TactileSensor):
-        return sensor
-    return make_sensor(sensor)
 
 
 def _finger_over(sensor: TactileSensor, edge: ProfileObject, rng: Any) -> SimulatedFinger:
@@ -287,7 +281,7 @@ def build_edge_radius_table(
     forces = [check_positive("forces", force) for force in forces]
     if int(orientations) < 2:
         raise ValueError(f"`orientations` must be >= 2, got {orientations}")
-    chosen = _sensor(sensor)
+    chosen = as_sensor(sensor)
     generator = np.random.default_rng(rng) if rng is not None else None
     offsets = np.random.default_rng(rng if rng is not None else 0)
     procedure_forces = sorted(forces)
@@ -347,7 +341,7 @@ def measure_edge_radius(
     -------
     EdgeRadiusResult
     """
-    chosen = _sensor(sensor)
+    chosen = as_sensor(sensor)
     if table is None:
         table = (
             _default_table(sensor, DEFAULT_FORCES)

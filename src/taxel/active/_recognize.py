@@ -17,7 +17,7 @@ from taxel.active._object_library import MODEL_NAMES, make_model
 from taxel.active._recognition import Recognition, RecognitionResult, explore, touch_descriptor
 from taxel.active._touch_features import TOUCH_FEATURES
 from taxel.frames import make_pose
-from taxel.sensor import TactileSensor, make_sensor
+from taxel.sensor import TactileSensor, as_sensor
 
 __all__ = ["DESCRIPTOR_NAMES", "build_model_library", "recognize_object"]
 
@@ -30,10 +30,6 @@ DEFAULT_TOUCH_FORCE = 15.0
 DEFAULT_STEP = 20e-3
 DEFAULT_POSITION_ERROR = 3e-3
 _GOLDEN_ANGLE = math.pi * (3.0 - math.sqrt(5.0))
-
-
-def _sensor(sensor: str | TactileSensor) -> TactileSensor:
-    return sensor if isinstance(sensor, TactileSensor) else make_sensor(sensor)
 
 
 def _finger(
@@ -91,7 +87,7 @@ def build_model_library(
         raise ValueError(f"`rotations` must be >= 1, got {rotations}")
     normal_force = check_positive("normal_force", normal_force)
     step = check_positive("step", step)
-    chosen = _sensor(sensor)
+    chosen = as_sensor(sensor)
     generator = None if rng is None else np.random.default_rng(rng)
     templates, labels = [], []
     for name in dict.fromkeys(models):
@@ -157,7 +153,7 @@ def recognize_object(
     """
     check_choice("name", name, MODEL_NAMES)
     position_error = check_positive("position_error", position_error, allow_zero=True)
-    chosen = _sensor(sensor)
+    chosen = as_sensor(sensor)
     if library is None:
         if isinstance(sensor, str):
             library = _default_library(sensor)

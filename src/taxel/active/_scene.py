@@ -21,7 +21,7 @@ import numpy as np
 
 from taxel._validation import check_positive
 from taxel.frames import as_pose, invert_pose, transform_directions, transform_points
-from taxel.mechanics import ElasticMaterial, Indenter, Sphere, effective_modulus
+from taxel.mechanics import ElasticMaterial, Indenter, Sphere, effective_modulus, hertz_sphere
 
 __all__ = ["Box", "ProfileObject", "SceneObject", "make_ball"]
 
@@ -126,9 +126,8 @@ class ProfileObject(SceneObject):
     def support_travel(self, normal_force: float) -> float:
         if self.support_radius is None or self.material is None:
             return 0.0
-        modulus = effective_modulus(self.material)  # against a rigid table
-        radius = (3 * normal_force * self.support_radius / (4 * modulus)) ** (1 / 3)
-        return radius**2 / self.support_radius
+        table = hertz_sphere(normal_force, self.support_radius, effective_modulus(self.material))
+        return table.indentation  # flattening against the rigid table
 
 
 def make_ball(

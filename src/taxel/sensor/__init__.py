@@ -4,7 +4,7 @@ Sensor model
     TactileSensor, SensorFrame, ArrayGeometry, LoadGrid, Cover, Readout, ReadoutChain,
     TaxelFields, taxel_fields, FIELD_NAMES, density_class, DENSITY_CLASSES
 Presets
-    make_sensor, PRESET_NAMES
+    make_sensor, as_sensor, PRESET_NAMES
 Calibration (flat-plate presses; dead and stuck taxels masked)
     calibrate, Calibration, calibration_error, CalibrationError
 Harmon's criteria (chapter section 25.2), measured
@@ -19,7 +19,7 @@ from taxel.sensor._fields import FIELD_NAMES, TaxelFields, taxel_fields
 from taxel.sensor._geometry import DENSITY_CLASSES, ArrayGeometry, LoadGrid, density_class
 from taxel.sensor._harmon import HarmonRow, HarmonTable, harmon_table
 from taxel.sensor._harmon_measures import ReadingStep, reading_step
-from taxel.sensor._presets import PRESET_NAMES, make_sensor
+from taxel.sensor._presets import PRESET_NAMES, as_sensor, make_sensor
 from taxel.sensor._readout import Readout, ReadoutChain
 from taxel.sensor._resolution import TwoPointResolution, two_point_resolution
 from taxel.sensor._sensor import SensorFrame, TactileSensor
@@ -42,6 +42,7 @@ __all__ = [
     "TactileSensor",
     "TaxelFields",
     "TwoPointResolution",
+    "as_sensor",
     "calibrate",
     "calibration_error",
     "density_class",

@@ -24,7 +24,7 @@ from taxel.transducers import (
     ResistiveTransducer,
 )
 
-__all__ = ["PRESET_NAMES", "make_sensor"]
+__all__ = ["PRESET_NAMES", "as_sensor", "make_sensor"]
 
 SILICONE = ElasticMaterial(1.0e6, 0.49)
 SOFT_SILICONE = ElasticMaterial(0.5e6, 0.49)
@@ -195,3 +195,19 @@ def make_sensor(name: str) -> TactileSensor:
     """
     check_choice("name", name, PRESET_NAMES)
     return _PRESETS[name]()
+
+
+def as_sensor(sensor: str | TactileSensor) -> TactileSensor:
+    """A sensor given as itself or by preset name.
+
+    Examples
+    --------
+    >>> as_sensor("resistive16").shape
+    (16, 16)
+    """
+    if isinstance(sensor, TactileSensor):
+        return sensor
+    if not isinstance(sensor, str):
+        raise TypeError(f"`sensor` must be a TactileSensor or a preset name, got {sensor!r}")
+    check_choice("sensor", sensor, PRESET_NAMES)
+    return make_sensor(sensor)
