@@ -116,8 +116,8 @@ def edge_section(quick: bool) -> str:
         "standardised squared difference over ln(radius). The nearest entry is the table "
         "radius nearest the estimate. The line load (force over the chord of the edge "
         "across the square pad, 33 to 47 mm with the angle) matters: at a fixed force, "
-        "turning an 8 mm edge from the pad's side to its diagonal narrows its cross-section "
-        "by 0.27 mm, as much as several millimetres of radius would.",
+        "turning an edge from the pad's side to its diagonal narrows its cross-section by "
+        "as much as several millimetres of radius would.",
         "",
     ]
     return "\n".join(parts)
@@ -240,7 +240,8 @@ def _seed_notes(seed_rows) -> str:
         f"x{sphere_cells[2] / sphere_cells[1]:.2f}, close to the seed's x1.69: a thin pad "
         "bonded to glass is stiffer than Hertz's half-space under a contact only a few "
         f"millimetres wide, so the contact widens less. Its imprint grows x{sphere_growth:.2f} "
-        "and is twice the true contact: the glass, 1 mm under the surface, feels the pressure "
+        f"and is x{sphere.area_pixels[2] / sphere_cells[2]:.1f} the true contact at the firm "
+        "press: the glass, 1 mm under the surface, feels the pressure "
         "spread beyond the contact, and the harder press saturates a wider core of the "
         "8-bit image. The seed's ball grew x6.9 because a racquet ball is a hollow shell "
         "(once its crown flattens, the contact grows about linearly with force) and because "
@@ -251,13 +252,23 @@ def _seed_notes(seed_rows) -> str:
         f"{674 / 289:.1f} at 12 N and {4681 / 487:.1f} at 39 N; taxel "
         f"{ball.area_pixels[1] / sphere.area_pixels[1]:.1f} and "
         f"{ball.area_pixels[2] / sphere.area_pixels[2]:.1f}) is the flattened cap of a soft "
-        "57 mm ball against the small dent of a hard 12.5 mm one; ours is larger at 12 N and "
-        "smaller at 39 N for the reasons above.\n\n"
+        "57 mm ball against the small dent of a hard 12.5 mm one; ours is "
+        f"{_larger(ball.area_pixels[1] / sphere.area_pixels[1], 674 / 289)} at 12 N and "
+        f"{_larger(ball.area_pixels[2] / sphere.area_pixels[2], 4681 / 487)} at 39 N for the "
+        "reasons above.\n\n"
         "**Heights.** The simulated ball (E = 0.45 MPa, nu = 0.5, fixed by the seed's 53 mm "
-        "at 12 N) reaches 48.2 mm at 39 N where the real, hollow ball reached 47 mm. The "
-        "acrylic sphere shows no change of height, as in the seed: the finger's extra "
-        "0.38 mm of travel between 12 and 39 N is all the pad's."
+        f"at 12 N) reaches {ball.heights[2] * 1e3:.1f} mm at 39 N where the real, hollow ball "
+        f"reached 47 mm. The acrylic sphere's height changes by "
+        f"{abs(sphere.height_change) * 1e3:.2f} mm (the seed: no change): of the finger's "
+        f"extra {(sphere.travels[2] - sphere.travels[1]) * 1e3:.2f} mm of travel between 12 "
+        f"and 39 N, {(sphere.pad_compressions[2] - sphere.pad_compressions[1]) * 1e3:.2f} mm "
+        "is the pad's."
     )
+
+
+def _larger(ours: float, seed: float) -> str:
+    """'larger' or 'smaller' than the seed's ratio, as measured."""
+    return "larger" if ours > seed else "smaller"
 
 
 # ------------------------------------------------------------------------------ recognition
