@@ -24,7 +24,8 @@ Texture from sliding (spatial-frequency signature)
 TextureSliding, slide_texture, TextureSlide, SLIDING_BAND_EDGES, Grating, SampledProfile;
 texture_speed_study, TextureSpeedStudy, texture_surface (speed invariance, classification);
 texture_signature, TextureSignature, spatial_power_spectrum, band_power, texture_features,
-DEFAULT_BAND_EDGES
+DEFAULT_BAND_EDGES, NORMALIZATIONS; independence of the load: load_shares,
+remove_load_coherent
 
 Texture classification (k nearest neighbours, JSON models)
 ---------------------------------------------------------
@@ -70,6 +71,7 @@ from taxel.active._edge_radius import (
 from taxel.active._edge_section import SECTION_DESCRIPTORS, EdgeCrossSection, edge_cross_section
 from taxel.active._edge_table import EdgeRadiusTable, fit_edge_radius_table
 from taxel.active._finger import SimulatedFinger
+from taxel.active._load_normalization import load_shares, remove_load_coherent
 from taxel.active._model_library import ModelLibrary
 from taxel.active._object_library import MODEL_NAMES, describe_models, make_model
 from taxel.active._pad_calibration import PadCalibration, calibrate_pad, core_area
@@ -124,6 +126,7 @@ from taxel.active._texture_classifier import (
 )
 from taxel.active._texture_signature import (
     DEFAULT_BAND_EDGES,
+    NORMALIZATIONS,
     TextureSignature,
     texture_features,
     texture_signature,
@@ -141,6 +144,7 @@ __all__ = [
     "DEFAULT_EDGE_RADII",
     "DEFORMATION_OBJECTS",
     "MODEL_NAMES",
+    "NORMALIZATIONS",
     "SECTION_DESCRIPTORS",
     "SLIDING_BAND_EDGES",
     "SLIP_DISPLACEMENT",
@@ -201,6 +205,7 @@ __all__ = [
     "fit_edge_radius_table",
     "fit_plane",
     "fit_texture_classifier",
+    "load_shares",
     "locate_corner",
     "make_ball",
     "make_block",
@@ -213,6 +218,7 @@ __all__ = [
     "probe_plane",
     "random_slip_scenario",
     "recognize_object",
+    "remove_load_coherent",
     "score_slip_detection",
     "simulate_slip",
     "slide_texture",
