@@ -29,7 +29,9 @@ remove_load_coherent
 
 Texture classification (k nearest neighbours, JSON models)
 ---------------------------------------------------------
-fit_texture_classifier, TextureClassifier, cross_validate_texture, CrossValidation
+fit_texture_classifier, TextureClassifier, cross_validate_texture, CrossValidation;
+settings chosen by cross-validation on training groups only: choose_texture_model,
+TextureModelChoice, nested_cross_validate_texture
 
 Edge radius from a light and a firm press (empirical table, JSON)
 -----------------------------------------------------------------
@@ -118,12 +120,7 @@ from taxel.active._slip_simulation import (
     slip_sensors,
 )
 from taxel.active._spatial_spectrum import band_power, spatial_power_spectrum
-from taxel.active._texture_classifier import (
-    CrossValidation,
-    TextureClassifier,
-    cross_validate_texture,
-    fit_texture_classifier,
-)
+from taxel.active._texture_classifier import TextureClassifier, fit_texture_classifier
 from taxel.active._texture_signature import (
     DEFAULT_BAND_EDGES,
     NORMALIZATIONS,
@@ -135,6 +132,13 @@ from taxel.active._texture_study import (
     TextureSpeedStudy,
     texture_speed_study,
     texture_surface,
+)
+from taxel.active._texture_validation import (
+    CrossValidation,
+    TextureModelChoice,
+    choose_texture_model,
+    cross_validate_texture,
+    nested_cross_validate_texture,
 )
 from taxel.active._touch_features import TOUCH_FEATURES
 
@@ -184,6 +188,7 @@ __all__ = [
     "SlipScenario",
     "SlipSequence",
     "TextureClassifier",
+    "TextureModelChoice",
     "TextureSignature",
     "TextureSlide",
     "TextureSliding",
@@ -194,6 +199,7 @@ __all__ = [
     "build_model_library",
     "calibrate_contact_points",
     "calibrate_pad",
+    "choose_texture_model",
     "core_area",
     "corner_probing_trial",
     "cross_validate_texture",
@@ -214,6 +220,7 @@ __all__ = [
     "make_model",
     "measure_deformation",
     "measure_edge_radius",
+    "nested_cross_validate_texture",
     "plane_probing_trial",
     "probe_plane",
     "random_slip_scenario",
