@@ -23,7 +23,11 @@ from taxel._validation import as_finite_array
 __all__ = ["TextureClassifier", "fit_texture_classifier"]
 
 _FORMAT = "taxel.texture_classifier"
-_VERSION = 1
+# Version 2 adds no field of its own but marks models whose `settings` may hold options
+# that change the features (normalization, decorrelate_load, per_taxel): a reader of
+# version 1 would ignore them and compute other features, so it must refuse the file.
+_VERSION = 2
+_READABLE_VERSIONS = (1, 2)
 
 
 def as_features(name: str, features: Any, n_features: int | None = None) -> np.ndarray:
@@ -147,7 +151,8 @@ class TextureClassifier:
         """Rebuild a classifier from `to_dict` output, checking its content."""
         if not isinstance(data, Mapping) or data.get("format") != _FORMAT:
             raise ValueError(f"not a texture classifier (no 'format': {_FORMAT!r})")
-        if data.get("version") != _VERSION:
+        version = data.get("version")
+        if not isinstance(version, int) or version not in _READABLE_VERSIONS:
             raise ValueError(f"unsupported classifier version {data.get('version')!r}")
         missing = [
             key
