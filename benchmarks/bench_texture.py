@@ -151,8 +151,10 @@ def run(quick: bool = False, data: str | os.PathLike[str] | None = None) -> str:
         "- **shipped default** (`taxel texture fit`): the same bands of each taxel's *load "
         "share* (its reading divided by the mean over the taxels at the same step, "
         '`normalization="load"`), with the part that follows the load fluctuation removed '
-        "(`decorrelate_load=True`); 1-nearest neighbour on standardised features. Fixed, "
-        "not chosen per scheme.",
+        "(`decorrelate_load=True`); 1-nearest neighbour on standardised features. The "
+        "same in every scheme, but fixed after seeing the nested runs (their inner folds "
+        "chose the decorrelation for every force fold), so its figures are not independent "
+        "of these files.",
         "- **nested choice** (the headline): in each outer fold, the feature set (4 families "
         "below, each with per-taxel + pooled levels or pooled levels only), k in {1, 3, 5} "
         "and standardisation on/off are chosen by the same leave-one-group-out scheme over "

@@ -8,6 +8,11 @@ k = f / |v| [cycles/m] does not: that is the speed-invariant signature used here
 the direction reverses r in time, which leaves a power spectrum unchanged, so the signature
 is invariant to the direction as well. Texture is best measured actively (seed, section 2.2
 and the introduction: "texture ... probably is better measured actively").
+
+The force is the third condition that should not matter. A firmer press scales the readings;
+``normalization="static"`` divides the band power by the squared mean reading of the whole
+recording, ``normalization="load"`` divides every step's readings by their mean over the
+taxels (`load_shares`), which also cancels a force that fluctuates while sliding.
 """
 
 from __future__ import annotations
