@@ -1,12 +1,15 @@
 """``taxel texture fit`` and ``taxel texture classify`` on small synthetic recordings."""
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
 
-from taxel.active import TextureClassifier
+from taxel.active import TextureClassifier, texture_features, texture_signature
 from taxel.cli import main
+from taxel.cli._texture import _features
+from taxel.io import read_fabricslide
 
 HEADER = "timestamp, proximity1, proximity2, " + ", ".join(f"channel{i}" for i in range(1, 17))
 PERIODS = {"Ribbed": 0.02, "Coarse": 0.06}  # spatial period of each fake fabric [m]
@@ -122,3 +125,49 @@ def test_usage_errors_exit_2(capsys):
         main(["texture", "classify", "x.csv"])
     assert stop.value.code == 2
     assert "--model" in _one_line_error(capsys)
+
+
+def test_feature_options_are_stored_and_reused(folders, tmp_path, capsys):
+    train, test = folders
+    files = sorted(str(path) for path in test.iterdir())
+    default = tmp_path / "default.json"
+    assert main(["texture", "fit", str(train), "--out", str(default)]) == 0
+    stored = json.loads(default.read_text())
+    assert stored["version"] == 2
+    assert stored["settings"]["normalization"] == "load"
+    assert stored["settings"]["decorrelate_load"] is True
+    assert stored["settings"]["per_taxel"] is True
+    assert len(stored["examples"][0]) == 16 * 7 + 7
+
+    options = ["--normalization", "static", "--keep-load-coherent", "--pooled-only"]
+    pooled = tmp_path / "pooled.json"
+    assert main(["texture", "fit", str(train), "--out", str(pooled), *options]) == 0
+    stored = json.loads(pooled.read_text())
+    assert stored["settings"]["normalization"] == "static"
+    assert stored["settings"]["decorrelate_load"] is False
+    assert len(stored["examples"][0]) == 7
+    capsys.readouterr()
+    assert main(["texture", "classify", *files, "--model", str(pooled)]) == 0
+    assert capsys.readouterr().out.splitlines() == [f"{files[0]}\tCoarse", f"{files[1]}\tRibbed"]
+
+
+def test_a_version_1_model_gets_the_features_of_version_1(folders, tmp_path, capsys):
+    """Models written before the feature options existed keep their meaning."""
+    train, test = folders
+    path = tmp_path / "model.json"
+    options = ["--normalization", "static", "--keep-load-coherent"]
+    assert main(["texture", "fit", str(train), "--out", str(path), *options]) == 0
+    data = json.loads(path.read_text())
+    data["version"] = 1
+    for name in ("normalization", "decorrelate_load", "per_taxel"):
+        del data["settings"][name]
+    path.write_text(json.dumps(data))
+    files = sorted(str(path) for path in test.iterdir())
+    capsys.readouterr()
+    assert main(["texture", "classify", *files, "--model", str(path)]) == 0
+    assert capsys.readouterr().out.splitlines() == [f"{files[0]}\tCoarse", f"{files[1]}\tRibbed"]
+    recording = read_fabricslide(files[0])
+    static = texture_features(
+        texture_signature(recording.readings, recording.time, recording.sliding_velocity)
+    )
+    np.testing.assert_array_equal(_features(Path(files[0]), data["settings"]), static)

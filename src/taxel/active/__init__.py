@@ -24,11 +24,14 @@ Texture from sliding (spatial-frequency signature)
 TextureSliding, slide_texture, TextureSlide, SLIDING_BAND_EDGES, Grating, SampledProfile;
 texture_speed_study, TextureSpeedStudy, texture_surface (speed invariance, classification);
 texture_signature, TextureSignature, spatial_power_spectrum, band_power, texture_features,
-DEFAULT_BAND_EDGES
+DEFAULT_BAND_EDGES, NORMALIZATIONS; independence of the load: load_shares,
+remove_load_coherent
 
 Texture classification (k nearest neighbours, JSON models)
 ---------------------------------------------------------
-fit_texture_classifier, TextureClassifier, cross_validate_texture, CrossValidation
+fit_texture_classifier, TextureClassifier, cross_validate_texture, CrossValidation;
+settings chosen by cross-validation on training groups only: choose_texture_model,
+TextureModelChoice, nested_cross_validate_texture
 
 Edge radius from a light and a firm press (empirical table, JSON)
 -----------------------------------------------------------------
@@ -70,6 +73,7 @@ from taxel.active._edge_radius import (
 from taxel.active._edge_section import SECTION_DESCRIPTORS, EdgeCrossSection, edge_cross_section
 from taxel.active._edge_table import EdgeRadiusTable, fit_edge_radius_table
 from taxel.active._finger import SimulatedFinger
+from taxel.active._load_normalization import load_shares, remove_load_coherent
 from taxel.active._model_library import ModelLibrary
 from taxel.active._object_library import MODEL_NAMES, describe_models, make_model
 from taxel.active._pad_calibration import PadCalibration, calibrate_pad, core_area
@@ -116,14 +120,10 @@ from taxel.active._slip_simulation import (
     slip_sensors,
 )
 from taxel.active._spatial_spectrum import band_power, spatial_power_spectrum
-from taxel.active._texture_classifier import (
-    CrossValidation,
-    TextureClassifier,
-    cross_validate_texture,
-    fit_texture_classifier,
-)
+from taxel.active._texture_classifier import TextureClassifier, fit_texture_classifier
 from taxel.active._texture_signature import (
     DEFAULT_BAND_EDGES,
+    NORMALIZATIONS,
     TextureSignature,
     texture_features,
     texture_signature,
@@ -133,6 +133,13 @@ from taxel.active._texture_study import (
     texture_speed_study,
     texture_surface,
 )
+from taxel.active._texture_validation import (
+    CrossValidation,
+    TextureModelChoice,
+    choose_texture_model,
+    cross_validate_texture,
+    nested_cross_validate_texture,
+)
 from taxel.active._touch_features import TOUCH_FEATURES
 
 __all__ = [
@@ -141,6 +148,7 @@ __all__ = [
     "DEFAULT_EDGE_RADII",
     "DEFORMATION_OBJECTS",
     "MODEL_NAMES",
+    "NORMALIZATIONS",
     "SECTION_DESCRIPTORS",
     "SLIDING_BAND_EDGES",
     "SLIP_DISPLACEMENT",
@@ -180,6 +188,7 @@ __all__ = [
     "SlipScenario",
     "SlipSequence",
     "TextureClassifier",
+    "TextureModelChoice",
     "TextureSignature",
     "TextureSlide",
     "TextureSliding",
@@ -190,6 +199,7 @@ __all__ = [
     "build_model_library",
     "calibrate_contact_points",
     "calibrate_pad",
+    "choose_texture_model",
     "core_area",
     "corner_probing_trial",
     "cross_validate_texture",
@@ -201,6 +211,7 @@ __all__ = [
     "fit_edge_radius_table",
     "fit_plane",
     "fit_texture_classifier",
+    "load_shares",
     "locate_corner",
     "make_ball",
     "make_block",
@@ -209,10 +220,12 @@ __all__ = [
     "make_model",
     "measure_deformation",
     "measure_edge_radius",
+    "nested_cross_validate_texture",
     "plane_probing_trial",
     "probe_plane",
     "random_slip_scenario",
     "recognize_object",
+    "remove_load_coherent",
     "score_slip_detection",
     "simulate_slip",
     "slide_texture",

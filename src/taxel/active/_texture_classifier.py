@@ -19,18 +19,18 @@ import numpy as np
 
 from taxel._validation import as_finite_array
 
-__all__ = [
-    "CrossValidation",
-    "TextureClassifier",
-    "cross_validate_texture",
-    "fit_texture_classifier",
-]
+# as_features and vote are shared with _texture_validation
+__all__ = ["TextureClassifier", "fit_texture_classifier"]
 
 _FORMAT = "taxel.texture_classifier"
-_VERSION = 1
+# Version 2 adds no field of its own but marks models whose `settings` may hold options
+# that change the features (normalization, decorrelate_load, per_taxel): a reader of
+# version 1 would ignore them and compute other features, so it must refuse the file.
+_VERSION = 2
+_READABLE_VERSIONS = (1, 2)
 
 
-def _as_features(name: str, features: Any, n_features: int | None = None) -> np.ndarray:
+def as_features(name: str, features: Any, n_features: int | None = None) -> np.ndarray:
     """(n_samples, n_features) float array; NaN allowed (unobserved band), inf not."""
     try:
         array = np.array(features, dtype=np.float64, ndmin=2)
@@ -57,6 +57,18 @@ def _distances(queries: np.ndarray, examples: np.ndarray) -> np.ndarray:
     shared = observed_q.astype(float) @ observed_e.T.astype(float)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(shared > 0, np.maximum(squared, 0.0) / shared, np.inf)
+
+
+def vote(distances: np.ndarray, labels: np.ndarray, n_neighbors: int) -> np.ndarray:
+    """Majority vote of the k nearest examples; a tie goes to the nearest tied class."""
+    order = np.argsort(distances, axis=1, kind="stable")[:, :n_neighbors]
+    predictions = []
+    for neighbours in order:
+        votes = labels[neighbours]
+        counts = {label: int(np.sum(votes == label)) for label in votes}
+        best = max(counts.values())
+        predictions.append(next(label for label in votes if counts[label] == best))
+    return np.array(predictions)
 
 
 @dataclass(frozen=True)
@@ -104,19 +116,15 @@ class TextureClassifier:
             (n_samples,) class labels (str). Votes tied between classes go to the class of
             the nearest of the tied neighbours.
         """
-        queries = _as_features("features", features, self.center.size) - self.center
-        distances = _distances(queries / self.scale, self.examples)
+        distances = self.distances(features)
         if np.any(np.all(np.isinf(distances), axis=1)):
             raise ValueError("`features` shares no observed feature with the training data")
-        labels = np.array(self.labels)
-        order = np.argsort(distances, axis=1, kind="stable")[:, : self.n_neighbors]
-        predictions = []
-        for neighbours in order:
-            votes = labels[neighbours]
-            counts = {label: int(np.sum(votes == label)) for label in votes}
-            best = max(counts.values())
-            predictions.append(next(label for label in votes if counts[label] == best))
-        return np.array(predictions)
+        return vote(distances, np.array(self.labels), self.n_neighbors)
+
+    def distances(self, features: Any) -> np.ndarray:
+        """(n_samples, n_examples) mean squared standardised difference to each example."""
+        queries = as_features("features", features, self.center.size) - self.center
+        return _distances(queries / self.scale, self.examples)
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready dictionary (NaN written as null)."""
@@ -143,7 +151,8 @@ class TextureClassifier:
         """Rebuild a classifier from `to_dict` output, checking its content."""
         if not isinstance(data, Mapping) or data.get("format") != _FORMAT:
             raise ValueError(f"not a texture classifier (no 'format': {_FORMAT!r})")
-        if data.get("version") != _VERSION:
+        version = data.get("version")
+        if not isinstance(version, int) or version not in _READABLE_VERSIONS:
             raise ValueError(f"unsupported classifier version {data.get('version')!r}")
         missing = [
             key
@@ -160,7 +169,7 @@ class TextureClassifier:
             except (TypeError, ValueError):
                 raise ValueError(f"texture classifier: {key!r} is not numeric") from None
 
-        examples = _as_features("examples", array("examples"))
+        examples = as_features("examples", array("examples"))
         center = as_finite_array("center", array("center"), ndim=1)
         scale = as_finite_array("scale", array("scale"), ndim=1)
         labels = tuple(str(label) for label in data["labels"])
@@ -209,6 +218,7 @@ def fit_texture_classifier(
     labels: Sequence[str],
     *,
     n_neighbors: int = 1,
+    standardize: bool = True,
     settings: Mapping[str, Any] | None = None,
 ) -> TextureClassifier:
     """Fit a k-nearest-neighbour texture classifier.
@@ -222,6 +232,10 @@ def fit_texture_classifier(
         (n_examples,) the class of each example.
     n_neighbors : int
         k >= 1, the number of neighbours that vote.
+    standardize : bool
+        Scale each feature by its spread over the examples (the default). False keeps the
+        features as they are (center 0, scale 1), which suits features that share one unit,
+        such as band levels in dB.
     settings : mapping, optional
         JSON-serialisable description of how the features were made, stored with the model.
 
@@ -243,7 +257,7 @@ def fit_texture_classifier(
     >>> model.predict([[4.0, 4.5], [0.3, 0.0]]).tolist()
     ['b', 'a']
     """
-    examples = _as_features("features", features)
+    examples = as_features("features", features)
     labels = tuple(str(label) for label in labels)
     if len(labels) != examples.shape[0]:
         raise ValueError(f"`labels` has {len(labels)} entries for {examples.shape[0]} examples")
@@ -253,9 +267,14 @@ def fit_texture_classifier(
         raise ValueError(f"`n_neighbors` must lie in [1, {len(labels)}], got {n_neighbors}")
     if np.any(np.all(np.isnan(examples), axis=0)):
         raise ValueError("`features` has a column that is NaN in every example")
-    center = np.nanmean(examples, axis=0)
-    spread = np.nanstd(examples, axis=0)
-    scale = np.where(spread > 0, spread, 1.0)
+    if not isinstance(standardize, bool | np.bool_):
+        raise TypeError(f"`standardize` must be a bool, got {standardize!r}")
+    if standardize:
+        center = np.nanmean(examples, axis=0)
+        spread = np.nanstd(examples, axis=0)
+        scale = np.where(spread > 0, spread, 1.0)
+    else:
+        center, scale = np.zeros(examples.shape[1]), np.ones(examples.shape[1])
     try:
         json.dumps(dict(settings or {}))
     except TypeError as error:
@@ -269,87 +288,3 @@ def fit_texture_classifier(
         n_neighbors=int(n_neighbors),
         settings=dict(settings or {}),
     )
-
-
-@dataclass(frozen=True)
-class CrossValidation:
-    """Outcome of a grouped cross-validation.
-
-    Attributes
-    ----------
-    classes : tuple of str
-        Row and column order of `confusion`.
-    predictions : numpy.ndarray
-        (n_examples,) predicted label of each example, from the fold that held it out.
-    accuracy : float
-        Fraction of examples predicted right.
-    confusion : numpy.ndarray
-        (n_classes, n_classes) counts: row = true class, column = predicted class.
-    group_accuracy : dict
-        Accuracy on each held-out group.
-    """
-
-    classes: tuple[str, ...]
-    predictions: np.ndarray
-    accuracy: float
-    confusion: np.ndarray
-    group_accuracy: dict[Any, float]
-
-
-def cross_validate_texture(
-    features: Any,
-    labels: Sequence[str],
-    groups: Sequence[Any],
-    *,
-    n_neighbors: int = 1,
-) -> CrossValidation:
-    """Leave-one-group-out cross-validation of `fit_texture_classifier`.
-
-    Parameters
-    ----------
-    features : array_like
-        (n_examples, n_features).
-    labels : sequence of str
-        (n_examples,) true classes.
-    groups : sequence
-        (n_examples,) a group key per example (e.g. the sliding speed); each group is held
-        out in turn, and the model fitted on all the others predicts it, so no example is
-        ever in the training set of its own prediction.
-    n_neighbors : int
-        k of the classifier.
-
-    Returns
-    -------
-    CrossValidation
-
-    Examples
-    --------
-    >>> result = cross_validate_texture(
-    ...     [[0.0], [0.2], [5.0], [5.1]], ["a", "a", "b", "b"], [1, 2, 1, 2])
-    >>> result.accuracy, result.confusion.tolist()
-    (1.0, [[2, 0], [0, 2]])
-    """
-    examples = _as_features("features", features)
-    labels_array = np.array([str(label) for label in labels])
-    keys = list(groups)
-    if not (len(labels_array) == len(keys) == examples.shape[0]):
-        raise ValueError("`features`, `labels` and `groups` must have the same length")
-    unique = sorted(set(keys), key=lambda key: (str(type(key)), key))
-    if len(unique) < 2:
-        raise ValueError(f"`groups` must hold at least two groups, got {len(unique)}")
-    predictions = np.empty(len(keys), dtype=object)
-    group_accuracy = {}
-    for key in unique:
-        held = np.array([other == key for other in keys])
-        model = fit_texture_classifier(
-            examples[~held], labels_array[~held].tolist(), n_neighbors=n_neighbors
-        )
-        predictions[held] = model.predict(examples[held])
-        group_accuracy[key] = float(np.mean(predictions[held] == labels_array[held]))
-    classes = tuple(sorted(set(labels_array.tolist())))
-    index = {label: position for position, label in enumerate(classes)}
-    confusion = np.zeros((len(classes), len(classes)), dtype=np.int64)
-    for true, predicted in zip(labels_array, predictions, strict=True):
-        confusion[index[true], index[predicted]] += 1
-    accuracy = float(np.trace(confusion) / len(keys))
-    return CrossValidation(classes, predictions.astype(str), accuracy, confusion, group_accuracy)

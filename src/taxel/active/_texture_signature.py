@@ -8,6 +8,11 @@ k = f / |v| [cycles/m] does not: that is the speed-invariant signature used here
 the direction reverses r in time, which leaves a power spectrum unchanged, so the signature
 is invariant to the direction as well. Texture is best measured actively (seed, section 2.2
 and the introduction: "texture ... probably is better measured actively").
+
+The force is the third condition that should not matter. A firmer press scales the readings;
+``normalization="static"`` divides the band power by the squared mean reading of the whole
+recording, ``normalization="load"`` divides every step's readings by their mean over the
+taxels (`load_shares`), which also cancels a force that fluctuates while sliding.
 """
 
 from __future__ import annotations
@@ -17,7 +22,8 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_range
+from taxel._validation import as_finite_array, check_choice, check_range
+from taxel.active._load_normalization import load_shares, remove_load_coherent
 from taxel.active._spatial_spectrum import (
     MIN_STEPS,
     as_readings,
@@ -27,11 +33,22 @@ from taxel.active._spatial_spectrum import (
     spatial_power_spectrum,
 )
 
-__all__ = ["DEFAULT_BAND_EDGES", "TextureSignature", "texture_features", "texture_signature"]
+__all__ = [
+    "DEFAULT_BAND_EDGES",
+    "NORMALIZATIONS",
+    "TextureSignature",
+    "texture_features",
+    "texture_signature",
+]
 
 #: Half-octave bands from 10 to 113 cycles/m (spatial periods of 100 mm down to 8.8 mm):
 #: the band a 35 Hz capacitive finger resolves at sliding speeds up to 150 mm/s.
 DEFAULT_BAND_EDGES = 10.0 * 2.0 ** (np.arange(8) / 2.0)
+
+#: How readings are made independent of the contact level: "static" divides the band power by
+#: the squared mean reading of the recording; "load" divides each step's readings by their mean
+#: over the taxels before the spectrum (`load_shares`), which also cancels load fluctuations.
+NORMALIZATIONS = ("static", "load")
 
 _SILENT_LEVEL = -120.0  # dB: rounding noise of float64, far below any sensor's noise
 
@@ -46,12 +63,14 @@ class TextureSignature:
         (n_frequencies,) spatial frequency k [cycles/m], from 0 to the Nyquist frequency.
     spatial_psd : numpy.ndarray
         (n_frequencies, n_taxels) one-sided power spectral density over spatial frequency
-        [reading^2 m], i.e. reading^2 per cycle/m; it integrates to the variance.
+        [reading^2 m], i.e. reading^2 per cycle/m; it integrates to the variance. Of the
+        load shares [m] when `normalization` is ``"load"``.
     band_edges : numpy.ndarray
         (n_bands + 1,) edges of the analysis bands [cycles/m].
     band_power : numpy.ndarray
-        (n_bands, n_taxels) variance of each taxel's reading in each band [reading^2]; NaN
-        for a band that reaches above `nyquist_spatial_frequency` (not observed).
+        (n_bands, n_taxels) variance of each taxel's reading in each band [reading^2]
+        (of its load share [-] when `normalization` is ``"load"``); NaN for a band that
+        reaches above `nyquist_spatial_frequency` (not observed).
     mean_reading : float
         Mean reading over the analysed steps and all taxels, the static contact level
         [reading].
@@ -59,6 +78,13 @@ class TextureSignature:
         |v| [m/s].
     sampling_rate : float
         Mean sampling rate [Hz].
+    normalization : str
+        One of `NORMALIZATIONS`: what the spectra were made of, and so what the levels are
+        relative to (the squared mean reading for ``"static"``, 1 for the dimensionless
+        load shares of ``"load"``).
+    load_decorrelated : bool
+        Whether the part of each taxel's signal that follows the load was removed
+        (`remove_load_coherent`) before the spectrum.
     """
 
     spatial_frequency: np.ndarray
@@ -68,6 +94,13 @@ class TextureSignature:
     mean_reading: float
     sliding_speed: float
     sampling_rate: float
+    normalization: str = "static"
+    load_decorrelated: bool = False
+
+    @property
+    def level_reference(self) -> float:
+        """What band levels are relative to: mean reading ("static") or 1 ("load")."""
+        return self.mean_reading if self.normalization == "static" else 1.0
 
     @property
     def nyquist_spatial_frequency(self) -> float:
@@ -81,17 +114,20 @@ class TextureSignature:
 
     @property
     def band_level(self) -> np.ndarray:
-        """Band power relative to the squared mean reading, (n_bands, n_taxels) [dB]."""
-        return _decibels(self.band_power, self.mean_reading)
+        """Band power re the squared `level_reference`, (n_bands, n_taxels) [dB]."""
+        return _decibels(self.band_power, self.level_reference)
 
     @property
     def pooled_band_level(self) -> np.ndarray:
-        """Taxel-averaged band power relative to the squared mean reading, (n_bands,) [dB]."""
-        return _decibels(self.band_power.mean(axis=1), self.mean_reading)
+        """Taxel-averaged band power re the squared `level_reference`, (n_bands,) [dB]."""
+        return _decibels(self.band_power.mean(axis=1), self.level_reference)
 
     @property
     def rms(self) -> np.ndarray:
-        """Roughness: RMS of each taxel's reading within the bands, (n_taxels,) [reading]."""
+        """Roughness: RMS of each taxel's reading within the bands, (n_taxels,) [reading].
+
+        Of the load share [-] when `normalization` is ``"load"``.
+        """
         return np.sqrt(self.band_power.sum(axis=0))
 
     @property
@@ -128,6 +164,8 @@ def texture_signature(
     band_edges: Any = DEFAULT_BAND_EDGES,
     segment_length: float = 0.2,
     trim_fraction: float = 0.1,
+    normalization: str = "static",
+    decorrelate_load: bool = False,
 ) -> TextureSignature:
     """The spatial-frequency signature of a sensor sliding at constant velocity.
 
@@ -147,6 +185,15 @@ def texture_signature(
     trim_fraction : float
         Fraction of the steps dropped at each end, in [0, 0.45], to keep only the steady
         sliding between the acceleration and deceleration of the motion.
+    normalization : {"static", "load"}
+        ``"static"``: spectra of the readings, levels relative to the squared mean reading
+        of the recording. ``"load"``: spectra of the `load_shares` (each reading divided by
+        the mean over the taxels at the same step), dimensionless, which a change of the
+        load, steady or fluctuating, leaves unchanged to first order; needs >= 2 taxels.
+    decorrelate_load : bool
+        Remove from each taxel's signal the part that follows the relative fluctuation of
+        the load (the mean reading over the taxels), `remove_load_coherent`; needs >= 2
+        taxels.
 
     Returns
     -------
@@ -159,6 +206,12 @@ def texture_signature(
     direction for a texture fixed in space: `band_level` (dB re the squared mean reading,
     so that a stronger contact, which scales both, changes it less), `rms` [reading],
     `rms_gradient` [reading/m] and the `centroid` [cycles/m].
+
+    A press that scales every reading by a factor a(t) leaves the ``"load"`` signature
+    unchanged even when a varies while sliding (a force loop or a rig that oscillates),
+    while ``"static"`` removes only a constant factor. On the FabricSlide recordings the
+    rig oscillates at about 2.3 Hz at the two highest force settings; see
+    ``docs/benchmarks.md`` for what each option does there.
 
     Examples
     --------
@@ -186,6 +239,15 @@ def texture_signature(
     if np.any(np.diff(time) < 0):
         raise ValueError("`time` must be non-decreasing")
     trim_fraction = check_range("trim_fraction", trim_fraction, 0.0, 0.45)
+    normalization = check_choice("normalization", normalization, NORMALIZATIONS)
+    if not isinstance(decorrelate_load, bool | np.bool_):
+        raise TypeError(f"`decorrelate_load` must be a bool, got {decorrelate_load!r}")
+    uses_load = normalization == "load" or bool(decorrelate_load)
+    if uses_load and readings.shape[1] < 2:
+        raise ValueError(
+            f"normalization={normalization!r}, decorrelate_load={decorrelate_load} need at "
+            f"least two taxels, got {readings.shape[1]}"
+        )
     edges = as_finite_array("band_edges", band_edges, ndim=1)
     check_band_edges(edges)
     drop = int(round(trim_fraction * time.shape[0]))
@@ -200,8 +262,11 @@ def texture_signature(
     if duration <= 0:
         raise ValueError("`time` must advance over the recording")
     sampling_rate = (time.shape[0] - 1) / duration
+    analysed = load_shares(readings) if normalization == "load" else readings
+    if decorrelate_load:
+        analysed = remove_load_coherent(analysed, readings.mean(axis=1))
     frequency, psd = spatial_power_spectrum(
-        readings, sampling_rate, sliding_velocity, segment_length=segment_length
+        analysed, sampling_rate, sliding_velocity, segment_length=segment_length
     )
     return TextureSignature(
         spatial_frequency=frequency,
@@ -211,22 +276,28 @@ def texture_signature(
         mean_reading=float(readings.mean()),
         sliding_speed=abs(float(sliding_velocity)),
         sampling_rate=float(sampling_rate),
+        normalization=normalization,
+        load_decorrelated=bool(decorrelate_load),
     )
 
 
-def texture_features(signature: TextureSignature) -> np.ndarray:
+def texture_features(signature: TextureSignature, *, per_taxel: bool = True) -> np.ndarray:
     """The feature vector of a signature, for a texture classifier.
 
     Parameters
     ----------
     signature : TextureSignature
+    per_taxel : bool
+        Include each taxel's band levels (the default); False keeps only the pooled ones,
+        which do not depend on how the taxels are numbered or placed.
 
     Returns
     -------
     numpy.ndarray
         (n_taxels * n_bands + n_bands,) the band levels [dB] of taxel 0 (all bands), taxel
-        1, ..., then the pooled band levels [dB]. NaN marks a band above the Nyquist
-        frequency; `TextureClassifier` compares features over the bands both sides observed.
+        1, ..., then the pooled band levels [dB]; (n_bands,) the pooled ones alone when
+        `per_taxel` is False. NaN marks a band above the Nyquist frequency;
+        `TextureClassifier` compares features over the bands both sides observed.
 
     Raises
     ------
@@ -241,19 +312,22 @@ def texture_features(signature: TextureSignature) -> np.ndarray:
     >>> grating = 100 + np.sin(2 * np.pi * 0.05 * time / 0.025)
     >>> rough = np.random.default_rng(0).normal(0, 0.1, (time.size, 2))
     >>> signature = texture_signature(grating[:, None] + rough, time, 0.05)
-    >>> texture_features(signature).shape
-    (21,)
+    >>> texture_features(signature).shape, texture_features(signature, per_taxel=False).shape
+    ((21,), (7,))
     """
     if signature.mean_reading <= 0:
         raise ValueError(
             "texture features are relative to the mean reading, which must be > 0, got "
             f"{signature.mean_reading:g}"
         )
-    per_taxel = signature.band_level.T.ravel()
-    features = np.concatenate([per_taxel, signature.pooled_band_level])
+    if not isinstance(per_taxel, bool | np.bool_):
+        raise TypeError(f"`per_taxel` must be a bool, got {per_taxel!r}")
+    parts = [signature.band_level.T.ravel()] if per_taxel else []
+    features = np.concatenate([*parts, signature.pooled_band_level])
     if np.any(features < _SILENT_LEVEL):
         raise ValueError(
-            f"a band holds no measurable power (below {_SILENT_LEVEL:g} dB re the mean "
-            "reading; a constant reading?)"
+            f"a band holds no measurable power (below {_SILENT_LEVEL:g} dB re the "
+            f"{'mean reading' if signature.normalization == 'static' else 'load'}; "
+            "a constant reading?)"
         )
     return features

@@ -3,7 +3,10 @@
 ``taxel texture fit DIR... --out MODEL.json`` reads every FabricSlide recording in the
 folders (the fabric of each is in its file name), computes its spatial-frequency texture
 features and stores a nearest-neighbour model as JSON. ``taxel texture classify FILE...
---model MODEL.json`` prints the predicted fabric of each recording.
+--model MODEL.json`` prints the predicted fabric of each recording, computing its features
+with the settings stored in the model. A model written before these settings existed
+(format version 1) holds none of them and gets the features of that time: "static"
+normalisation, no load decorrelation, per-taxel levels.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ import numpy as np
 
 from taxel.active import (
     DEFAULT_BAND_EDGES,
+    NORMALIZATIONS,
     TextureClassifier,
     fit_texture_classifier,
     texture_features,
@@ -29,7 +33,13 @@ from taxel.io import list_fabricslide_files, parse_fabricslide_name, read_fabric
 
 __all__ = ["register"]
 
-_SIGNATURE_SETTINGS = ("band_edges", "segment_length", "trim_fraction")
+_SIGNATURE_SETTINGS = (
+    "band_edges",
+    "segment_length",
+    "trim_fraction",
+    "normalization",
+    "decorrelate_load",
+)
 
 
 def _features(path: Path, settings: Mapping[str, Any]) -> np.ndarray:
@@ -38,7 +48,7 @@ def _features(path: Path, settings: Mapping[str, Any]) -> np.ndarray:
     signature = texture_signature(
         recording.readings, recording.time, recording.sliding_velocity, **options
     )
-    return texture_features(signature)
+    return texture_features(signature, per_taxel=bool(settings.get("per_taxel", True)))
 
 
 def _fit(arguments: argparse.Namespace) -> int:
@@ -51,6 +61,9 @@ def _fit(arguments: argparse.Namespace) -> int:
         "band_edges": [float(edge) for edge in DEFAULT_BAND_EDGES],
         "segment_length": arguments.segment_length,
         "trim_fraction": arguments.trim_fraction,
+        "normalization": arguments.normalization,
+        "decorrelate_load": not arguments.keep_load_coherent,
+        "per_taxel": not arguments.pooled_only,
     }
     features = np.array([_features(path, settings) for path in files])
     labels = [str(parse_fabricslide_name(path)["fabric"]) for path in files]
@@ -119,6 +132,25 @@ def register(commands: Any) -> None:
         default=0.1,
         metavar="FRACTION",
         help="fraction of each recording dropped at each end (0.1)",
+    )
+    fit.add_argument(
+        "--normalization",
+        choices=NORMALIZATIONS,
+        default="load",
+        help="'load': spectra of each taxel's share of the load at every step, unchanged by "
+        "the force and its fluctuations (default); 'static': spectra of the readings, "
+        "levels relative to the squared mean reading (the features of format version 1)",
+    )
+    fit.add_argument(
+        "--keep-load-coherent",
+        action="store_true",
+        help="keep the part of each taxel's signal that follows the load fluctuation "
+        "(by default it is removed)",
+    )
+    fit.add_argument(
+        "--pooled-only",
+        action="store_true",
+        help="use only the taxel-averaged band levels, not each taxel's",
     )
     fit.set_defaults(handler=_fit)
     classify = actions.add_parser(
