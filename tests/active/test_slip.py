@@ -79,12 +79,20 @@ def test_gross_slip_relaxes_friction_and_slides(slip):
     onset = slip.gross_frame
     # truth: the first frame past 2 um of sliding
     assert slip.sliding_displacement[onset] > 2e-6 >= slip.sliding_displacement[onset - 1]
-    # sliding = v (t - tau (1 - exp(-t / tau))) + the pad's recoil K (mu_s - mu_k) N
+    # sliding = v (t - tau (1 - exp(-t / tau))) + v_0 tau (1 - exp(-t / tau)) + the pad's
+    # recoil K (mu_s - mu_k) N, v_0 the mean stick-phase speed over the last tau
     after = slip.time[-1] - (SLIP.hold_time + SLIP.load_time)
     tau = SLIP.relaxation_time
-    recoil = _compliance(slip) * SLIP.friction * (1 - SLIP.kinetic_ratio) * SLIP.normal_force
-    expected = SLIP.sliding_speed * (after - tau * (1 - np.exp(-after / tau))) + recoil
+    limit = SLIP.friction * SLIP.normal_force
+    recoil = _compliance(slip) * limit * (1 - SLIP.kinetic_ratio)
+    onset_speed = _compliance(slip) * limit * (tau / SLIP.load_time) ** (2 / 3) / tau
+    relaxed = 1 - np.exp(-after / tau)
+    expected = SLIP.sliding_speed * (after - tau * relaxed) + onset_speed * tau * relaxed + recoil
     assert slip.sliding_displacement[-1] == pytest.approx(expected, rel=0.05)
+    # the object's speed is continuous at the onset: no frame-to-frame step drops by half
+    direction = np.array([np.cos(SLIP.direction), np.sin(SLIP.direction)])
+    steps = np.diff(slip.pattern_offset @ direction)[onset - 5 : onset + 5]
+    assert np.all(steps[1:] > 0.5 * steps[:-1])
     kinetic = SLIP.kinetic_ratio * SLIP.friction * SLIP.normal_force
     assert np.median(slip.tangential_load[-20:]) == pytest.approx(kinetic, rel=0.02)
     # incipient: the annulus has grown by 1 % of a within a few frames of the ramp's start
