@@ -34,8 +34,9 @@ sliding, in which case no onset is reported. Then:
   like the start of sliding).
 
 The default thresholds were set by `calibrate_slip_detector` on simulated calibration trials
-(`slip_trials` with seeds 101 and 303, 120 slip, 60 hold and 60 steady trials) for at most
-2.5 % false alarms (half of issue 6's budget), and are scored on other trials in
+(`slip_trials` with seeds 101 and 303, 120 slip, 60 hold and 60 steady trials, the
+amplifiers' time constant given) for at most 2.5 % false alarms (half of issue 6's
+budget), and are scored on other trials in
 `docs/benchmarks.md`. What no threshold can fix: in the first 3 frames of gross slip the
 friction has dropped by only a fraction of (mu_s - mu_k) N and the stick-slip vibrations
 have often not started (see the benchmark).
