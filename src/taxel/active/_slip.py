@@ -56,6 +56,7 @@ from taxel.active._slip_signals import (
     register,
     restore_charge,
     robust_sigma,
+    run_ahead,
 )
 
 __all__ = ["SlipDetection", "SlipDetector", "SlipEvent", "detect_slip"]
@@ -252,7 +253,7 @@ class SlipDetector:
         residual = held - np.polynomial.polynomial.polyval(np.arange(held.shape[0]), trend).T
         sigma = max(float(np.sqrt(np.mean(robust_sigma(residual) ** 2))), 1e-9)
         sliding = float(np.linalg.norm(trend[1])) * rate > self.rest_speed
-        speed_statistic = self._run_ahead(displacement, sigma)
+        speed_statistic = run_ahead(displacement, sigma, self.warm_up, _REFERENCE, _GAP)
         piezo_statistic = np.full(n, np.nan)
         if piezo_frames is not None:
             piezo = as_finite_array("piezo_frames", piezo_frames, ndim=3)
@@ -290,26 +291,6 @@ class SlipDetector:
                 detection.frame_rate,
             )
         return replace(detection, events=tuple(events))
-
-    def _run_ahead(self, displacement: np.ndarray, sigma: float) -> np.ndarray:
-        """How far the pattern runs ahead of its extrapolated track, in noise units."""
-        n = displacement.shape[0]
-        steps = np.arange(_REFERENCE) - (_REFERENCE - 1) / 2
-        lever = (_REFERENCE - 1) / 2 + _GAP
-        held = displacement[self.warm_up - 10 : self.warm_up].mean(axis=0)
-        ahead = np.full(n, np.nan)
-        for k in range(self.warm_up, n):
-            window = displacement[k - _GAP - _REFERENCE + 1 : k - _GAP + 1]
-            slope = steps @ window / (steps @ steps)
-            deviation = displacement[k] - (window.mean(axis=0) + lever * slope)
-            moved = displacement[k] - held
-            if np.linalg.norm(moved) > 3 * sigma:
-                ahead[k] = deviation @ moved / np.linalg.norm(moved) / sigma
-            else:  # no direction of travel yet: the size of the deviation, centred (2 dof)
-                ahead[k] = np.linalg.norm(deviation) / sigma - 1.25
-        smooth = ahead.copy()
-        smooth[self.warm_up + 1 :] = 0.5 * (ahead[self.warm_up + 1 :] + ahead[self.warm_up : -1])
-        return smooth
 
     def piezo_innovation(self, piezo: np.ndarray, rate: float) -> np.ndarray:
         """The PVDF innovation z_k of each frame (`motion_innovation`), (n_frames,)."""

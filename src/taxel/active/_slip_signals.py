@@ -8,6 +8,7 @@ r"""The signals behind slip detection: pattern registration and the PVDF motion 
   stress change since the first frame instead of a change that fades within tau.
 - `motion_innovation`: how far each PVDF frame departs from the stick-phase prediction,
   along the direction in which the contact pattern has been moving (see the notes there).
+- `run_ahead`: how far the registered pattern runs ahead of its extrapolated track.
 - `cusum`: Page's one-sided CUSUM.
 """
 
@@ -16,7 +17,14 @@ from __future__ import annotations
 import numpy as np
 from scipy import ndimage
 
-__all__ = ["cusum", "motion_innovation", "register", "restore_charge", "robust_sigma"]
+__all__ = [
+    "cusum",
+    "motion_innovation",
+    "register",
+    "restore_charge",
+    "robust_sigma",
+    "run_ahead",
+]
 
 
 def register(frames: np.ndarray, reference: np.ndarray, pitch: tuple[float, float]) -> np.ndarray:
@@ -139,3 +147,34 @@ def motion_innovation(
     norm[norm == 0] = np.inf
     z[first:] = np.einsum("ij,ij->i", direction, innovation) / norm / scale
     return z
+
+
+def run_ahead(
+    displacement: np.ndarray, sigma: float, warm_up: int, reference: int, gap: int
+) -> np.ndarray:
+    """How far the pattern runs ahead of its extrapolated track, in noise units, (n,).
+
+    A line fitted to the positions of `reference` frames ending `gap` frames before frame k
+    is extrapolated to k; the deviation along the direction of travel (that of the
+    displacement from the held position, the mean of the last 10 warm-up frames) is divided
+    by the position noise `sigma` [m] and averaged over 2 frames. While the pattern is
+    within 3 sigma of its held position, the size of the deviation (centred, 2 degrees of
+    freedom) is used instead. NaN during the warm-up.
+    """
+    n = displacement.shape[0]
+    steps = np.arange(reference) - (reference - 1) / 2
+    lever = (reference - 1) / 2 + gap
+    held = displacement[warm_up - 10 : warm_up].mean(axis=0)
+    ahead = np.full(n, np.nan)
+    for k in range(warm_up, n):
+        window = displacement[k - gap - reference + 1 : k - gap + 1]
+        slope = steps @ window / (steps @ steps)
+        deviation = displacement[k] - (window.mean(axis=0) + lever * slope)
+        moved = displacement[k] - held
+        if np.linalg.norm(moved) > 3 * sigma:
+            ahead[k] = deviation @ moved / np.linalg.norm(moved) / sigma
+        else:
+            ahead[k] = np.linalg.norm(deviation) / sigma - 1.25
+    smooth = ahead.copy()
+    smooth[warm_up + 1 :] = 0.5 * (ahead[warm_up + 1 :] + ahead[warm_up:-1])
+    return smooth
