@@ -8,20 +8,26 @@ from __future__ import annotations
 
 import sys
 import time
+from dataclasses import replace
 
 import numpy as np
 
 from taxel.active import (
     SlipDetector,
+    calibrate_slip_detector,
     corner_probing_trial,
     plane_probing_trial,
     score_slip_detection,
+    slip_sensors,
     slip_trials,
     texture_speed_study,
 )
+from taxel.active._slip_frames import sensed_stress
+from taxel.active._slip_simulation import _master_contact
 
-TUNING_SEED = 101  # the slip thresholds were chosen on trials of this seed (60/30/30)
+CALIBRATION_SEEDS = (101, 303)  # the slip thresholds are set on these trials (60/30/30 each)
 TEST_SEED = 2024
+BUDGET = 0.025  # false alarms allowed on the calibration trials
 
 
 def _stats(values, scale: float, digits: int = 3, separator: str = " | ") -> str:
@@ -102,14 +108,104 @@ def _corner(quick: bool) -> list[str]:
     ]
 
 
+def _noise_in_pascal(sensor) -> float:
+    """One taxel's readout noise as a stress [Pa] (the preset's noise over its sensitivity)."""
+    chain = sensor.readout_chain
+    probe = np.full(sensor.shape, 1e4 if not sensor.is_dynamic else -1e4)
+    slope = abs(float((sensor.mean_reading(probe) - sensor.mean_reading(0 * probe))[0, 0])) / 1e4
+    return sensor.readout.noise * chain.span / chain.lsb / slope
+
+
+def _friction_resolution(sequence) -> float:
+    """Cramer-Rao standard deviation [N] of the friction force from one frame of both arrays.
+
+    Estimated jointly with the pattern's position (x, y) and the normal force, from the
+    simulator's own linear stress maps at the onset and each array's preset noise; the
+    static array's hysteresis is ignored (so the bound is optimistic).
+    """
+    scenario = sequence.scenario
+    static, piezo = slip_sensors()
+    master, spacing, _ = _master_contact(static, scenario.radius, scenario.normal_force)
+    offset = sequence.pattern_offset[sequence.gross_frame]
+    step = 1e-6
+    offsets = offset + step * np.array([[0, 0], [0, 0], [1, 0], [0, 0], [0, 1]])
+    kinematics = {
+        "stick": np.zeros(5),
+        "friction": np.array([0.0, 1.0, 0.0, 0.0, 0.0]),
+        "force_scale": np.array([1.0, 1.0, 1.0, 1.01, 1.0]),
+    }
+    information = np.zeros((4, 4))
+    for sensor in (static, piezo):
+        stress = sensed_stress(
+            sensor, master, spacing, kinematics, offsets, scenario.normal_force, scenario.direction
+        ).reshape(5, -1)
+        columns = [
+            (stress[2] - stress[0]) / step,
+            (stress[4] - stress[0]) / step,
+            (stress[1] - stress[0]) / scenario.normal_force,  # per newton of friction
+            (stress[3] - stress[0]) / 0.01,
+        ]
+        design = np.stack(columns, axis=1) / _noise_in_pascal(sensor)
+        information += design.T @ design
+    return float(np.sqrt(np.linalg.inv(information)[2, 2]))
+
+
+def _ceiling(sequences) -> dict:
+    """What the first 3 frames of gross slip offer any detector (see `_friction_resolution`)."""
+    ratios, quiet = [], []
+    for sequence in sequences:
+        s = sequence.scenario
+        if s.kind != "slip":
+            continue
+        elapsed = sequence.time[sequence.gross_frame + 3] - (s.hold_time + s.load_time)
+        drop = (1 - s.kinetic_ratio) * s.friction * s.normal_force
+        drop *= 1 - np.exp(-elapsed / s.relaxation_time)
+        ratios.append(drop / _friction_resolution(sequence))
+        quiet.append(np.exp(-s.vibration_rate * elapsed))  # no stick-slip event yet
+    ratios, quiet = np.array(ratios), np.array(quiet)
+    return {
+        "median_ratio": float(np.median(ratios)),
+        "above3": float(np.mean(ratios >= 3)),
+        "above5": float(np.mean(ratios >= 5)),
+        "event": float(1 - quiet.mean()),
+        "ceiling": float(np.mean(1 - (ratios < 3) * quiet)),
+    }
+
+
+def _row(name: str, result) -> str:
+    within = result.detection_within
+    latencies = result.latencies
+    spread = (
+        f"{np.median(latencies):.0f} / {np.percentile(latencies, 95):.0f}"
+        if latencies.size
+        else "- / -"
+    )
+    return (
+        f"| {name} | {result.detection_rate:.0%} | {within[1]:.0%} / {within[3]:.0%} / "
+        f"{within[5]:.0%} / {within[10]:.0%} | {result.false_alarm_rate:.0%} | "
+        f"{result.premature_rate:.0%} | {spread} |"
+    )
+
+
 def _slip(quick: bool) -> list[str]:
+    calibration_counts = (20, 10, 10) if quick else (60, 30, 30)
     counts = (10, 5, 5) if quick else (50, 25, 25)
+    seeds = CALIBRATION_SEEDS[:1] if quick else CALIBRATION_SEEDS
     started = time.perf_counter()
+    calibration_trials = [
+        trial for seed in seeds for trial in slip_trials(*calibration_counts, seed=seed)
+    ]
     sequences = slip_trials(*counts, seed=TEST_SEED)
-    simulated = time.perf_counter() - started
+    simulated = (time.perf_counter() - started) / (len(calibration_trials) + len(sequences))
+    calibration = calibrate_slip_detector(calibration_trials, false_alarm_budget=BUDGET)
+    detector = calibration.detector
     started = time.perf_counter()
-    result = score_slip_detection(sequences, SlipDetector())
-    detected = time.perf_counter() - started
+    result = score_slip_detection(sequences, detector)
+    detected = (time.perf_counter() - started) / len(sequences)
+    static_only = score_slip_detection(
+        [replace(sequence, piezo_frames=None) for sequence in sequences], detector
+    )
+    default = SlipDetector()
     hold_only = [s for s in sequences if s.scenario.kind == "hold"]
     ramps = sum(s.scenario.load_time > 0 for s in hold_only)
     latencies = result.latencies
@@ -117,58 +213,89 @@ def _slip(quick: bool) -> list[str]:
         f"{int(np.sum((latencies >= low) & (latencies <= high)))}"
         for low, high in ((-2, 0), (1, 3), (4, 6), (7, 10), (11, 20), (21, 1000))
     )
-    within = result.detection_within
     incipient = result.incipient_latencies
     verdict = (
         "met"
         if result.detection_rate >= 0.95
         and result.false_alarm_rate <= 0.05
-        and within[3] >= 0.95 * result.detection_rate
+        and result.detection_within[3] >= 0.95
         else "not met"
     )
+    bound = _ceiling(sequences)
+    seeds_text = " and ".join(str(seed) for seed in seeds)
     return [
         "### Slip: incipient and gross (`SlipDetector` on `simulate_slip` trials)\n",
-        f"{counts[0]} hold-then-slip trials, {counts[1]} hold-only trials ({ramps} with a "
-        f"load ramp to 50-90 % of mu N, the others at a constant load) and {counts[2]} "
-        "steady-sliding trials, seed "
-        f"{TEST_SEED} (the thresholds were chosen on other trials, seed {TUNING_SEED}). "
-        "Random per trial: N 1-3 N, object radius 30-80 mm, mu_s 0.4-1.2, mu_k/mu_s "
-        "0.7-0.95, initial load 0-30 % of mu_s N, ramp to mu_s N in 50-300 ms, sliding "
-        "speed 10-50 mm/s reached with a 2-8 ms time constant, any direction, stick-slip "
-        "vibrations of 1-4 um. resistive16 at 1 kHz and piezo8x8 (charge amplifiers) read "
-        f"the same contact with their preset noise. Simulation {simulated / len(sequences):.2f}"
-        f" s and detection {detected / len(sequences):.2f} s per trial.\n",
-        "| gross slip | value | target |",
-        "|---|---|---|",
-        f"| detection rate (event no earlier than 2 frames before onset) | "
-        f"**{result.detection_rate:.0%}** | >= 95 % |",
-        f"| detected within 1 / 3 / 5 / 10 frames | {within[1]:.0%} / **{within[3]:.0%}** / "
-        f"{within[5]:.0%} / {within[10]:.0%} | latency <= 3 frames |",
-        f"| false alarms on hold-only and steady-sliding trials | "
-        f"**{result.false_alarm_rate:.0%}** | <= 5 % |",
-        f"| premature alarms on slip trials (> 2 frames early) | {result.premature_rate:.0%} "
-        "| |",
-        f"| latency median / p95 [frames at 1 kHz] | "
-        f"{np.median(latencies):.0f} / {np.percentile(latencies, 95):.0f} | <= 3 |",
+        f"Evaluation: {counts[0]} hold-then-slip trials, {counts[1]} hold-only trials ({ramps} "
+        f"with a load ramp to 50-90 % of mu N, the others at a constant load) and {counts[2]} "
+        f"steady-sliding trials, seed {TEST_SEED}. Random per trial: N 1-3 N, object radius "
+        "30-80 mm, mu_s 0.4-1.2, mu_k/mu_s 0.7-0.95, initial load 0-30 % of mu_s N, ramp to "
+        "mu_s N in 50-300 ms, sliding speed 10-50 mm/s reached with a 2-8 ms time constant "
+        "from the speed the stick phase ended with, any direction, stick-slip vibrations of "
+        "1-4 um (100-300 events/s) with a 2-5 % friction ripple. resistive16 at 1 kHz and "
+        "piezo8x8 (charge amplifiers, tau = 0.1 s) read the same contact with their preset "
+        f"noise (about {_noise_in_pascal(slip_sensors()[0]):.0f} Pa and "
+        f"{_noise_in_pascal(slip_sensors()[1]):.0f} Pa per taxel). Truth: gross slip starts "
+        "at the first "
+        "frame where the object has slid over the pad's surface by more than 2 um. Simulation "
+        f"{simulated:.2f} s and detection {detected:.2f} s per trial.\n",
+        f"Thresholds: `calibrate_slip_detector` on calibration trials of seeds {seeds_text} "
+        f"({len(calibration_trials)} trials: {calibration.evaluation.n_slip} slip, "
+        f"{calibration.evaluation.n_hold} hold, {calibration.evaluation.n_steady} steady), for "
+        f"at most {BUDGET:.1%} false alarms there (half the target's 5 %, as a margin for the "
+        "spread between trial sets), maximising the slip trials detected within 3 frames: "
+        f"PVDF CUSUM threshold {detector.piezo_threshold:g} (drift {detector.drift:g}, "
+        f"predictor over {max(3, round(1000.0 / detector.cutoff))} frames), static run-ahead "
+        f"threshold {detector.gross_threshold:g} (the `SlipDetector` defaults: "
+        f"{default.piezo_threshold:g} and {default.gross_threshold:g}). The evaluation trials "
+        "played no part in choosing them.\n",
+        "| gross slip | detected | within 1 / 3 / 5 / 10 frames | false alarms | premature "
+        "(> 2 frames early) | latency median / p95 [frames] |",
+        "|---|---|---|---|---|---|",
+        _row("calibration trials, both arrays", calibration.evaluation),
+        _row("calibration trials, static array alone", calibration.static_evaluation),
+        _row(f"**evaluation trials (seed {TEST_SEED}), both arrays**", result),
+        _row("evaluation trials, static array alone", static_only),
+        "| target | >= 95 % | latency <= 3 frames | <= 5 % | | |",
         "",
-        "| latency [frames] | -2..0 | 1..3 | 4..6 | 7..10 | 11..20 | > 20 |",
+        "The previous detector (commit d1e741e: a CUSUM of the PVDF array's whole-frame "
+        "high-pass energy, OR the static run-ahead) scored on the same evaluation trials: "
+        "detected 80 %, within 3 frames 4 %, false alarms 0 %, premature 6 %, latency median "
+        "9 frames.\n",
+        "| latency on the evaluation trials, both arrays [frames] | -2..0 | 1..3 | 4..6 | 7..10 "
+        "| 11..20 | > 20 |",
         "|---|---|---|---|---|---|---|",
         f"| trials | {histogram} |",
         "",
-        f"Incipient slip (the slip annulus has grown by 1 % of the contact radius): detected "
-        f"in {result.incipient_detection_rate:.0%} of the trials that have it, latency median "
+        f"Incipient slip (the slip annulus has grown by 1 % of the contact radius), evaluation "
+        f"trials: detected in {result.incipient_detection_rate:.0%} of the trials that have "
+        f"it, latency median "
         f"{np.median(incipient) if incipient.size else float('nan'):.0f} frames, p95 "
         f"{np.percentile(incipient, 95) if incipient.size else float('nan'):.0f}; false "
         f"alarms on constant holds and steady sliding {result.incipient_false_alarm_rate:.0%}.\n",
         f"**Target (detection >= 95 %, false alarms <= 5 %, latency <= 3 frames): {verdict}.** "
-        "Why the latency falls short: at 1 kHz the object slides 10-50 um per frame once it "
-        "has accelerated, while one frame of resistive16 locates the contact pattern to about "
-        "7 um (2 mm taxels, 12-bit readout with its preset noise), so a few frames of sliding "
-        "must accumulate before the pattern is seen to run ahead of its stick-phase track; "
-        "the PVDF array's noise (1e-3 of a 100 kPa range, about 200 Pa) is larger than the "
-        "stress changes the 1-4 um stick-slip vibrations cause under a 1 mm pad, so the piezo "
-        "channel catches only the strongest onsets, within 1-2 frames. Premature alarms come "
-        "from fast load ramps whose first frames move the pattern like a slow slip.\n",
+        "The PVDF innovation (each restored frame against the straight line through the "
+        "previous 6, projected on the pattern's direction of motion) sees the onset within 3 "
+        "frames in about half of the trials, against a few per cent for the static array, "
+        "whose registration locates the pattern to 4-9 um per frame and which must wait "
+        "for the sliding to outrun the stick-phase track (the Cattaneo-Mindlin shift itself "
+        "speeds up without bound as the stick disc vanishes). Why the rest cannot be reached "
+        "honestly, per evaluation slip trial, from the simulator's own stress maps and the "
+        "preset noise: by frame onset + 3 the friction has dropped by "
+        f"(mu_s - mu_k) N (1 - exp(-t / tau)), a median {bound['median_ratio']:.1f} times "
+        "the Cramer-Rao standard deviation of the friction force that one frame of both "
+        "arrays allows (estimated jointly with the pattern's position and the normal force, "
+        "hysteresis ignored); it exceeds 3 of them in "
+        f"{bound['above3']:.0%} of the trials and 5 in {bound['above5']:.0%}. A stick-slip "
+        f"event has started by then in {bound['event']:.0%} of them on average. A detector that "
+        "caught every drop above 3 standard deviations in a single frame and every event the "
+        f"moment it starts would reach {bound['ceiling']:.0%} within 3 frames; a false-alarm "
+        "rate of a few per cent over hundreds of held frames needs more than 4 standard "
+        "deviations. The false alarms: a load ramp that stops abruptly close to mu_s N jerks "
+        "the pattern like a slip, and a single large innovation in a still contact can pass "
+        "the threshold; the CUSUM threshold trades them against latency. A rate of a few "
+        f"per cent measured on {counts[1] + counts[2]} slip-free trials has a binomial "
+        f"spread of about {100 * np.sqrt(BUDGET * (1 - BUDGET) / (counts[1] + counts[2])):.0f}"
+        " points, hence the calibration's margin.\n",
     ]
 
 

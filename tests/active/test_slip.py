@@ -6,12 +6,15 @@ import pytest
 from taxel.active import (
     SlipDetector,
     SlipScenario,
+    calibrate_slip_detector,
     detect_slip,
     random_slip_scenario,
     score_slip_detection,
     simulate_slip,
     slip_sensors,
 )
+from taxel.active._slip_signals import cusum, motion_innovation, register, restore_charge
+from taxel.transducers import charge_amplifier_output
 
 SLIP = SlipScenario(
     kind="slip",
@@ -79,12 +82,20 @@ def test_gross_slip_relaxes_friction_and_slides(slip):
     onset = slip.gross_frame
     # truth: the first frame past 2 um of sliding
     assert slip.sliding_displacement[onset] > 2e-6 >= slip.sliding_displacement[onset - 1]
-    # sliding = v (t - tau (1 - exp(-t / tau))) + the pad's recoil K (mu_s - mu_k) N
+    # sliding = v (t - tau (1 - exp(-t / tau))) + v_0 tau (1 - exp(-t / tau)) + the pad's
+    # recoil K (mu_s - mu_k) N, v_0 the mean stick-phase speed over the last tau
     after = slip.time[-1] - (SLIP.hold_time + SLIP.load_time)
     tau = SLIP.relaxation_time
-    recoil = _compliance(slip) * SLIP.friction * (1 - SLIP.kinetic_ratio) * SLIP.normal_force
-    expected = SLIP.sliding_speed * (after - tau * (1 - np.exp(-after / tau))) + recoil
+    limit = SLIP.friction * SLIP.normal_force
+    recoil = _compliance(slip) * limit * (1 - SLIP.kinetic_ratio)
+    onset_speed = _compliance(slip) * limit * (tau / SLIP.load_time) ** (2 / 3) / tau
+    relaxed = 1 - np.exp(-after / tau)
+    expected = SLIP.sliding_speed * (after - tau * relaxed) + onset_speed * tau * relaxed + recoil
     assert slip.sliding_displacement[-1] == pytest.approx(expected, rel=0.05)
+    # the object's speed is continuous at the onset: no frame-to-frame step drops by half
+    direction = np.array([np.cos(SLIP.direction), np.sin(SLIP.direction)])
+    steps = np.diff(slip.pattern_offset @ direction)[onset - 5 : onset + 5]
+    assert np.all(steps[1:] > 0.5 * steps[:-1])
     kinetic = SLIP.kinetic_ratio * SLIP.friction * SLIP.normal_force
     assert np.median(slip.tangential_load[-20:]) == pytest.approx(kinetic, rel=0.02)
     # incipient: the annulus has grown by 1 % of a within a few frames of the ramp's start
@@ -106,19 +117,29 @@ def test_frames_and_truth_of_each_kind(slip, hold, steady):
     assert ramp.tangential_load.max() == pytest.approx(0.7 * 0.8 * 4.0, rel=0.01)
 
 
+def _detector(**settings):
+    return SlipDetector(piezo_time_constant=slip_sensors()[1].transducer.time_constant, **settings)
+
+
 def test_detector_finds_the_onsets(slip):
-    found = SlipDetector().run(slip.static_frames, slip.piezo_frames, frame_rate=1000.0)
+    found = _detector().run(slip.static_frames, slip.piezo_frames, frame_rate=1000.0)
     assert found.initial_state == "holding"
     incipient, gross = found.first("incipient"), found.first("gross")
     assert 0 <= incipient.frame - slip.incipient_frame <= 10
-    assert 0 <= gross.frame - slip.gross_frame <= 10
+    assert gross.channel == "piezo" and 0 <= gross.frame - slip.gross_frame <= 3
     assert gross.time == pytest.approx(gross.frame / 1000.0)
     assert [event["kind"] for event in found.to_dict()["events"]] == ["incipient", "gross"]
+    # the static array alone: the pattern's run-ahead, a few frames later
+    alone = _detector().run(slip.static_frames, frame_rate=1000.0).first("gross")
+    assert alone.channel == "speed" and 0 <= alone.frame - slip.gross_frame <= 10
+    assert found.position_noise == pytest.approx(found.position_noise)  # set, not NaN
+    assert 1e-7 < found.position_noise < 2e-5
 
 
 def test_no_alarm_on_a_hold_or_on_steady_sliding(hold, steady):
     held = detect_slip(hold.static_frames, hold.piezo_frames, frame_rate=1000.0)
     assert held.initial_state == "holding" and held.events == ()
+    assert np.nanmax(held.piezo_statistic) < SlipDetector().piezo_threshold
     sliding = detect_slip(steady.static_frames, steady.piezo_frames, frame_rate=1000.0)
     assert sliding.initial_state == "sliding" and sliding.events == ()
     # the pattern's speed is measured: 30 mm/s, the default sliding speed
@@ -147,3 +168,59 @@ def test_bad_inputs_raise():
         detect_slip(np.zeros((60, 4, 4)), np.zeros((50, 2, 2)), frame_rate=1000.0)
     with pytest.raises(ValueError, match="`kind` must be one of slip, hold, steady"):
         random_slip_scenario("drop", 0)
+
+
+def test_restore_charge_undoes_the_amplifier_leak():
+    # a press held for 0.3 s fades from a charge amplifier (tau = 20 ms); restored, it stays
+    time = np.arange(400) * 1e-3
+    stress = -2e4 * np.clip((time - 0.02) / 0.05, 0.0, 1.0)[:, None] * np.array([1.0, 0.5])
+    amplifier = dict(area=4e-6, feedback_capacitance=1e-10, feedback_resistance=2e8)
+    output = charge_amplifier_output(stress.T, 1e-3, **amplifier).T
+    assert abs(output[-1, 0]) < 1e-4 * abs(output[70, 0])  # faded
+    restored = restore_charge(output, frame_rate=1000.0, time_constant=0.02)
+    d33 = -3.3e-11  # PVDF, C/N
+    expected = -d33 * 4e-6 * stress / 1e-10  # V = -d33 A sigma / C_f, no leak
+    assert restored == pytest.approx(expected, rel=1e-9, abs=1e-12)
+
+
+def test_motion_innovation_is_zero_on_a_straight_track_and_unit_on_noise():
+    rng = np.random.default_rng(1)
+    blob = np.exp(-(np.linspace(-2, 2, 30) ** 2))
+    # a pattern sliding steadily (to first order): each frame on the line through the last
+    frames = blob - 0.05 * np.arange(80)[:, None] * np.gradient(blob)
+    steady = motion_innovation(frames, window=20, prediction=6, sigma=1e-3)
+    assert np.all(np.isnan(steady[:27])) and np.nanmax(np.abs(steady)) < 0.05
+    # it stops dead at frame 60: the innovation along its direction of motion is negative
+    stopped = frames.copy()
+    stopped[60:] = stopped[60]
+    jump = motion_innovation(stopped, window=20, prediction=6, sigma=1e-3)
+    assert jump[61] < -10 and np.nanargmin(jump) >= 60
+    # white noise alone: z is standard normal
+    noise = motion_innovation(rng.normal(0.0, 2.0, (4000, 30)), window=20, prediction=6, sigma=2.0)
+    assert np.nanmean(noise**2) == pytest.approx(1.0, abs=0.06)
+
+
+def test_cusum_and_register_known_values():
+    assert cusum(np.array([0.0, 3.0, 3.0, -4.0, 5.0]), 1, 1.0).tolist()[1:] == [2.0, 4.0, 0.0, 4.0]
+    rows, cols = np.mgrid[:16, :16]
+    blob = np.exp(-((cols - 7.3) ** 2 + (rows - 8.1) ** 2) / 8.0)
+    moved = np.exp(-((cols - 7.3 - 0.37) ** 2 + (rows - 8.1 + 0.21) ** 2) / 8.0)
+    shift = register(moved[None], blob, (2e-3, 2e-3))[0]
+    assert shift == pytest.approx([0.37 * 2e-3, -0.21 * 2e-3], abs=2e-6)
+
+
+def test_calibration_keeps_the_false_alarm_budget(slip, hold, steady):
+    trials = [slip, hold, steady]
+    statistics = _detector().run(hold.static_frames, hold.piezo_frames, frame_rate=1000.0)
+    worst = float(np.nanmax(statistics.piezo_statistic))  # the hold's largest CUSUM
+    candidates = [0.5 * worst, 1.5 * worst, 1e9]
+    calibration = calibrate_slip_detector(
+        trials, false_alarm_budget=0.0, piezo_thresholds=candidates, gross_thresholds=[5.0]
+    )
+    # below the hold's maximum is a false alarm; 1e9 detects nothing: 1.5 x worst it is
+    assert calibration.detector.piezo_threshold == pytest.approx(1.5 * worst)
+    assert calibration.evaluation.false_alarm_rate == 0.0
+    assert calibration.evaluation.detection_rate == 1.0
+    assert calibration.to_dict()["static_evaluation"]["n_slip"] == 1
+    with pytest.raises(ValueError, match="`false_alarm_budget` must lie in"):
+        calibrate_slip_detector(trials, false_alarm_budget=2.0)

@@ -17,7 +17,8 @@ Slip: incipient and gross, from pattern displacement and a PVDF array
 SlipDetector, detect_slip, SlipDetection, SlipEvent; hold-then-slip simulation:
 SlipScenario, random_slip_scenario, simulate_slip, SlipSequence, slip_sensors,
 SLIP_DISPLACEMENT, ANNULUS_GROWTH; scoring: slip_trials, score_slip_detection,
-evaluate_slip_detection, SlipEvaluation
+evaluate_slip_detection, SlipEvaluation; thresholds for a false-alarm budget:
+calibrate_slip_detector, SlipCalibration
 
 Texture from sliding (spatial-frequency signature)
 --------------------------------------------------
@@ -105,7 +106,9 @@ from taxel.active._sliding_texture import (
 )
 from taxel.active._slip import SlipDetection, SlipDetector, SlipEvent, detect_slip
 from taxel.active._slip_evaluation import (
+    SlipCalibration,
     SlipEvaluation,
+    calibrate_slip_detector,
     evaluate_slip_detection,
     score_slip_detection,
     slip_trials,
@@ -181,6 +184,7 @@ __all__ = [
     "SampledProfile",
     "SceneObject",
     "SimulatedFinger",
+    "SlipCalibration",
     "SlipDetection",
     "SlipDetector",
     "SlipEvaluation",
@@ -199,6 +203,7 @@ __all__ = [
     "build_model_library",
     "calibrate_contact_points",
     "calibrate_pad",
+    "calibrate_slip_detector",
     "choose_texture_model",
     "core_area",
     "corner_probing_trial",

@@ -12,15 +12,28 @@ sliding give its false alarms.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
 
-from taxel.active._slip import SlipDetector
-from taxel.active._slip_simulation import SlipSequence, random_slip_scenario, simulate_slip
+from taxel._validation import check_range
+from taxel.active._slip import SlipDetection, SlipDetector
+from taxel.active._slip_simulation import (
+    SlipSequence,
+    random_slip_scenario,
+    simulate_slip,
+    slip_sensors,
+)
 
-__all__ = ["SlipEvaluation", "evaluate_slip_detection", "score_slip_detection", "slip_trials"]
+__all__ = [
+    "SlipCalibration",
+    "SlipEvaluation",
+    "calibrate_slip_detector",
+    "evaluate_slip_detection",
+    "score_slip_detection",
+    "slip_trials",
+]
 
 
 def slip_trials(
@@ -111,25 +124,43 @@ class SlipEvaluation:
         }
 
 
+def _default_settings() -> dict[str, Any]:
+    """The simulated finger's charge-amplifier time constant (`slip_sensors`)."""
+    return {"piezo_time_constant": slip_sensors()[1].transducer.time_constant}
+
+
 def score_slip_detection(
     sequences: Sequence[SlipSequence],
     detector: SlipDetector | None = None,
     *,
     early_tolerance: int = 2,
 ) -> SlipEvaluation:
-    """Run a detector on simulated sequences and score it against their truth."""
-    detector = detector or SlipDetector()
+    """Run a detector on simulated sequences and score it against their truth.
+
+    The default detector is `SlipDetector` with its default thresholds and the time
+    constant of the simulated PVDF array's charge amplifiers (`slip_sensors`).
+    """
+    detector = detector or SlipDetector(**_default_settings())
     if not sequences:
         raise ValueError("`sequences` must hold at least one trial")
+    return _tally(sequences, [_detect(detector, s) for s in sequences], early_tolerance)
+
+
+def _detect(detector: SlipDetector, sequence: SlipSequence) -> SlipDetection:
+    return detector.run(
+        sequence.static_frames, sequence.piezo_frames, frame_rate=sequence.frame_rate
+    )
+
+
+def _tally(
+    sequences: Sequence[SlipSequence], detections: Sequence[SlipDetection], early_tolerance: int
+) -> SlipEvaluation:
+    """Score the detections of a detector against the truth of their sequences."""
     latencies, incipient_latencies = [], []
     counts = {"slip": 0, "hold": 0, "steady": 0}
     premature = alarms = incipient_alarms = incipient_truths = incipient_free = 0
-    for sequence in sequences:
-        kind = sequence.scenario.kind
-        counts[kind] += 1
-        found = detector.run(
-            sequence.static_frames, sequence.piezo_frames, frame_rate=sequence.frame_rate
-        )
+    for sequence, found in zip(sequences, detections, strict=True):
+        counts[sequence.scenario.kind] += 1
         gross, incipient = found.first("gross"), found.first("incipient")
         if sequence.gross_frame is not None:
             if gross is not None and gross.frame < sequence.gross_frame - early_tolerance:
@@ -172,6 +203,115 @@ def score_slip_detection(
     )
 
 
+@dataclass(frozen=True)
+class SlipCalibration:
+    """Thresholds of a slip detector set on calibration trials for a false-alarm budget.
+
+    Attributes
+    ----------
+    detector : SlipDetector
+        The detector with the chosen `gross_threshold` and `piezo_threshold`.
+    evaluation : SlipEvaluation
+        Its score on the calibration trials, with their PVDF frames.
+    static_evaluation : SlipEvaluation
+        Its score on the same trials without the PVDF frames (the static channel alone).
+    false_alarm_budget : float
+        The largest false-alarm rate allowed on the calibration trials.
+    latency : int
+        The latency [frames] whose detections were maximised.
+    """
+
+    detector: SlipDetector
+    evaluation: SlipEvaluation
+    static_evaluation: SlipEvaluation
+    false_alarm_budget: float
+    latency: int
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready dictionary (the thresholds and both scores)."""
+        return {
+            "gross_threshold": self.detector.gross_threshold,
+            "piezo_threshold": self.detector.piezo_threshold,
+            "false_alarm_budget": self.false_alarm_budget,
+            "latency_frames": self.latency,
+            "evaluation": self.evaluation.to_dict(),
+            "static_evaluation": self.static_evaluation.to_dict(),
+        }
+
+
+def calibrate_slip_detector(
+    sequences: Sequence[SlipSequence],
+    *,
+    false_alarm_budget: float = 0.05,
+    latency: int = 3,
+    early_tolerance: int = 2,
+    gross_thresholds: Any = None,
+    piezo_thresholds: Any = None,
+    **settings: Any,
+) -> SlipCalibration:
+    """Set a slip detector's thresholds on calibration trials for a false-alarm budget.
+
+    Parameters
+    ----------
+    sequences : sequence of SlipSequence
+        Calibration trials (slip, hold and steady), never the trials the detector is then
+        scored on.
+    false_alarm_budget : float, default 0.05
+        Largest fraction of hold and steady trials with a gross-slip event.
+    latency : int, default 3
+        The thresholds maximise the slip trials detected within `latency` frames of the
+        onset, then those detected at all, then the threshold itself (the largest of equals).
+    early_tolerance : int, default 2
+        As in `score_slip_detection`.
+    gross_thresholds, piezo_thresholds : array_like, optional
+        Candidates; default 3-20 in steps of 0.5 and 4-60 in steps of 1.
+    **settings
+        Other `SlipDetector` settings (fixed); `piezo_time_constant` defaults to that of
+        `slip_sensors`' PVDF array.
+
+    Returns
+    -------
+    SlipCalibration
+
+    Notes
+    -----
+    The statistics of each trial are computed once; the thresholds only decide on them
+    (`SlipDetector.decide`). `gross_threshold` is set on the static channel alone (it
+    decides only without PVDF frames), then `piezo_threshold` with the PVDF frames.
+    Candidates over the budget are kept only if none is within it (then the one with the
+    fewest false alarms wins).
+    """
+    budget = check_range("false_alarm_budget", false_alarm_budget, 0.0, 1.0)
+    if not sequences:
+        raise ValueError("`sequences` must hold at least one trial")
+    gross_grid = np.arange(3.0, 20.01, 0.5) if gross_thresholds is None else gross_thresholds
+    piezo_grid = np.arange(4.0, 60.01, 1.0) if piezo_thresholds is None else piezo_thresholds
+    settings = {**_default_settings(), **settings}
+    fused = [_detect(SlipDetector(**settings), s) for s in sequences]
+    static = [replace(f, piezo_statistic=np.full_like(f.piezo_statistic, np.nan)) for f in fused]
+
+    def best(name: str, grid: Any, statistics: list[SlipDetection], fixed: dict) -> tuple:
+        ranked = []
+        for value in np.asarray(grid, dtype=float):
+            detector = SlipDetector(**{**settings, **fixed, name: float(value)})
+            result = _tally(sequences, [detector.decide(f) for f in statistics], early_tolerance)
+            quick = int(np.sum(result.latencies <= latency))
+            over = max(result.false_alarm_rate - budget, 0.0)
+            ranked.append(((-over, quick, result.latencies.size, value), detector, result))
+        return max(ranked, key=lambda item: item[0])
+
+    gross = best("gross_threshold", gross_grid, static, {})
+    chosen = {"gross_threshold": gross[1].gross_threshold}
+    piezo = best("piezo_threshold", piezo_grid, fused, chosen)
+    return SlipCalibration(
+        detector=piezo[1],
+        evaluation=piezo[2],
+        static_evaluation=_tally(sequences, [piezo[1].decide(f) for f in static], early_tolerance),
+        false_alarm_budget=budget,
+        latency=int(latency),
+    )
+
+
 def evaluate_slip_detection(
     n_slip: int = 40,
     n_hold: int = 20,
@@ -189,7 +329,8 @@ def evaluate_slip_detection(
     seed : int, default 0
         Seeds the scenarios, vibrations and noise.
     detector : SlipDetector, optional
-        Default: `SlipDetector()` with its default thresholds.
+        Default: `SlipDetector` with its default thresholds and the time constant of the
+        simulated PVDF array's charge amplifiers.
 
     Returns
     -------

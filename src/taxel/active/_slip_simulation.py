@@ -15,8 +15,12 @@ Physics (one trial, `SlipScenario`):
   delta = K mu_s N [1 - (1 - T / mu_s N)^(2/3)], K = 3 (2 - nu) / (16 G a) (rigid object on
   the pad, half-space compliance; Johnson, Contact Mechanics, chapter 7).
 - Gross slip once T reaches mu_s N: friction relaxes to mu_k with time constant tau and the
-  object slides, v(t) = v_s (1 - exp(-t' / tau)); the pattern translates by the sliding
-  displacement s(t) plus the elastic shift K mu N.
+  object slides, v(t') = v_0 exp(-t' / tau) + v_s (1 - exp(-t' / tau)): its speed is
+  continuous at the onset (the load exceeds the friction, so it cannot stop), starting from
+  v_0, its mean speed over the last tau of the stick phase (the Cattaneo-Mindlin shift
+  grows without bound in speed as c -> 0, a quasi-static divergence that the friction's own
+  transition time smooths); the pattern translates by the sliding displacement s(t) plus
+  the elastic shift K mu N.
 - Micro-vibrations: stick-slip events of the sliding contact (Poisson, damped sinusoids of a
   few micrometres at 80-400 Hz, with the friction force fluctuating in step); smaller events
   while the slip annulus grows (their number proportional to the annulus' growth); a
@@ -234,17 +238,21 @@ def _events(
     return total
 
 
-def _kinematics(scenario: SlipScenario, time: np.ndarray, rng: np.random.Generator) -> dict:
+def _kinematics(
+    scenario: SlipScenario, time: np.ndarray, rng: np.random.Generator, compliance: float
+) -> dict:
     """Load, stick ratio, friction, object position and sliding of every frame.
 
     The object's position (along the load, relative to the sensor's base) is the pad's
-    shear delta while it sticks; once it slips it accelerates smoothly away from the last
-    stuck position, while the pad's shear relaxes with the friction force: the sliding
-    displacement is the difference of the two.
+    shear delta while it sticks; once it slips it moves on from the last stuck position
+    with a continuous speed (see the module notes), while the pad's shear relaxes with the
+    friction force: the sliding displacement is the difference of the two. `compliance` is
+    K [m/N].
     """
     s = scenario
     limit = s.friction * s.normal_force
     kinetic = s.kinetic_ratio * s.friction
+    tau = s.relaxation_time
     if s.kind == "steady":
         t_slip = -np.inf
         stick = np.zeros(time.shape)
@@ -253,14 +261,22 @@ def _kinematics(scenario: SlipScenario, time: np.ndarray, rng: np.random.Generat
     else:
         initial = s.initial_load * limit
         target = limit if s.kind == "slip" else s.plateau * limit
-        rate = (limit - initial) / s.load_time if s.load_time > 0 else 0.0
-        load = np.minimum(initial + rate * np.clip(time - s.hold_time, 0.0, None), target)
+
+        def load_at(t: np.ndarray) -> np.ndarray:
+            rate = (limit - initial) / s.load_time if s.load_time > 0 else 0.0
+            return np.minimum(initial + rate * np.clip(t - s.hold_time, 0.0, None), target)
+
+        load = load_at(time)
         t_slip = s.hold_time + s.load_time if s.kind == "slip" else np.inf
         stick = np.where(time < t_slip, (1.0 - np.clip(load / limit, 0.0, 1.0)) ** (1 / 3), 0.0)
         after = np.clip(time - t_slip, 0.0, None) if np.isfinite(t_slip) else 0.0 * time
-        relax = np.exp(-after / s.relaxation_time)
+        relax = np.exp(-after / tau)
         friction = np.where(time < t_slip, s.friction, kinetic + (s.friction - kinetic) * relax)
-        travel = s.sliding_speed * (after - s.relaxation_time * (1.0 - relax))
+        onset_speed = 0.0
+        if np.isfinite(t_slip):  # the stick-phase shift over the last tau, K mu N (c/a)^2
+            earlier = 1.0 - np.clip(load_at(np.array(t_slip - tau)) / limit, 0.0, 1.0)
+            onset_speed = compliance * limit * float(earlier) ** (2 / 3) / tau
+        travel = s.sliding_speed * (after - tau * (1.0 - relax)) + onset_speed * tau * (1 - relax)
     slipping = time >= t_slip
     vibration = s.vibration_amplitude * _events(
         rng, np.where(slipping, s.vibration_rate, 0.0), time, s
@@ -325,11 +341,11 @@ def simulate_slip(
     duration = s.after_time if steady else s.hold_time + s.load_time + s.after_time
     time = np.arange(int(round(duration * rate))) / rate
     rng = np.random.default_rng(s.seed)
-    kinematics = _kinematics(s, time, rng)
     master, spacing, contact_radius = _master_contact(static, s.radius, s.normal_force)
     material = static.cover.material
     modulus = material.youngs_modulus / (2 * (1 + material.poisson_ratio))
     compliance = 3 * (2 - material.poisson_ratio) / (16 * modulus * contact_radius)
+    kinematics = _kinematics(s, time, rng, compliance)
     slipping = kinematics["slipping"]
     shear = np.where(
         slipping,

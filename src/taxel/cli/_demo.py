@@ -33,6 +33,8 @@ def register(commands: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--out", metavar="DIR", default="demo-output", help="output folder (default: demo-output)"
     )
-    parser.add_argument("--quick", action="store_true", help="fewer trials and smaller tables: a fast look")
+    parser.add_argument(
+        "--quick", action="store_true", help="fewer trials and smaller tables: a fast look"
+    )
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     parser.set_defaults(handler=_run)

@@ -1,0 +1,180 @@
+r"""The signals behind slip detection: pattern registration and the PVDF motion innovation.
+
+- `register`: the shift of the contact pattern of a static array from a held reference
+  image, by iterated Lucas-Kanade least squares over all taxels (with white readout noise of
+  equal variance on every taxel, the least-squares shift is the maximum-likelihood one).
+- `restore_charge`: undo the leak of a charge amplifier (eq. 25.17 with R_f across C_f, a
+  first-order high-pass of time constant tau = R_f C_f), so that a PVDF frame reads the
+  stress change since the first frame instead of a change that fades within tau.
+- `motion_innovation`: how far each PVDF frame departs from the stick-phase prediction,
+  along the direction in which the contact pattern has been moving (see the notes there).
+- `run_ahead`: how far the registered pattern runs ahead of its extrapolated track.
+- `cusum`: Page's one-sided CUSUM.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy import ndimage
+
+__all__ = [
+    "cusum",
+    "motion_innovation",
+    "register",
+    "restore_charge",
+    "robust_sigma",
+    "run_ahead",
+]
+
+
+def register(frames: np.ndarray, reference: np.ndarray, pitch: tuple[float, float]) -> np.ndarray:
+    """Shift (x, y) [m] of the pattern of each frame from the reference image, (n, 2).
+
+    Iterated Lucas-Kanade: the reference is re-sampled (cubic splines) at the current estimate
+    and the residual shift solved by least squares over the image; each frame starts from
+    the previous frame's estimate, so the pattern is followed over many taxels.
+    """
+    shifts = np.zeros((frames.shape[0], 2))
+    estimate = np.zeros(2)  # (columns, rows) in taxels
+    for index, frame in enumerate(frames):
+        for _ in range(4):
+            moved = ndimage.shift(reference, (estimate[1], estimate[0]), order=3, mode="nearest")
+            grad_y, grad_x = np.gradient(moved)
+            a = np.array(
+                [
+                    [(grad_x * grad_x).sum(), (grad_x * grad_y).sum()],
+                    [(grad_x * grad_y).sum(), (grad_y * grad_y).sum()],
+                ]
+            )
+            if np.linalg.det(a) <= 1e-12 * max(np.trace(a), 1e-300) ** 2:
+                break  # no contact pattern to follow
+            change = frame - moved
+            step = np.linalg.solve(a, [(grad_x * change).sum(), (grad_y * change).sum()])
+            estimate = estimate - step
+            if np.abs(step).max() < 1e-3:
+                break
+        shifts[index] = estimate
+    return shifts * np.array([pitch[1], pitch[0]])
+
+
+def robust_sigma(values: np.ndarray, axis: int | None = 0) -> np.ndarray:
+    """Standard deviation from the median absolute deviation (normal data)."""
+    deviation = np.abs(values - np.median(values, axis=axis, keepdims=True))
+    return np.median(deviation, axis=axis) / 0.6745
+
+
+def cusum(z: np.ndarray, start: int, drift: float) -> np.ndarray:
+    """Page's CUSUM S_k = max(0, S_{k-1} + z_k - drift) from frame `start` (NaN before)."""
+    statistic = np.full(z.shape, np.nan)
+    total = 0.0
+    for k in range(start, z.size):
+        total = max(0.0, total + z[k] - drift)
+        statistic[k] = total
+    return statistic
+
+
+def restore_charge(frames: np.ndarray, *, frame_rate: float, time_constant: float) -> np.ndarray:
+    r"""PVDF frames (n, taxels) with the charge amplifier's leak undone [same units].
+
+    The amplifier's recursion is :math:`V_k = a V_{k-1} - g \Delta Q_k / C_f` with
+    :math:`a = e^{-\Delta t / \tau}` and :math:`g = (\tau / \Delta t)(1 - a)` (see
+    `taxel.transducers.charge_amplifier_output`), so :math:`(V_k - a V_{k-1}) / g` is the
+    charge step of frame k, in output units; their running sum is the stress change since
+    the first frames, whose mean is taken as the rest level.
+    """
+    decay = np.exp(-1.0 / (frame_rate * time_constant))
+    gain = frame_rate * time_constant * (1.0 - decay)
+    level = frames - frames[: min(5, frames.shape[0])].mean(axis=0)
+    steps = level.copy()
+    steps[1:] -= decay * level[:-1]
+    return np.cumsum(steps, axis=0) / gain
+
+
+def motion_innovation(
+    frames: np.ndarray, *, window: int, prediction: int, sigma: float
+) -> np.ndarray:
+    r"""Innovation of each frame along the pattern's direction of motion, in noise units.
+
+    Parameters
+    ----------
+    frames : numpy.ndarray
+        (n, taxels) frames of the stress change (restored PVDF frames).
+    window : int
+        W, frames over which the direction of motion is taken.
+    prediction : int
+        M, past frames from which a straight line predicts the current frame.
+    sigma : float
+        Readout noise of one taxel [frame units].
+
+    Returns
+    -------
+    numpy.ndarray
+        (n,) z_k, N(0, 1) while the contact follows its stick-phase track (NaN where the
+        history is too short).
+
+    Notes
+    -----
+    While the object sticks, the pattern moves smoothly (the pad's tangential compliance)
+    and each frame is predicted by the straight line through the previous M frames,
+    :math:`\hat F_k = \sum_j w_j F_{k-M+j}` (least-squares weights). The innovation
+    :math:`e_k = F_k - \hat F_k` is projected on the unit direction
+    :math:`u_k \propto F_{k-M-1} - F_{k-M-1-W}` along which the pattern has been moving
+    (older frames than the prediction's, so that the two carry independent noise):
+    :math:`z_k = u_k \cdot e_k / (\sigma \sqrt{1 + \sum w_j^2})`. The onset of gross slip
+    makes the pattern lurch along that direction (the friction drops from mu_s N to
+    mu_k N, and the traction's own stress under the pad with it), and the stick-slip
+    vibrations of the sliding contact shake it along the same direction; both are
+    innovations the straight line cannot follow. Projecting keeps one degree of freedom
+    instead of one per taxel: the energy of a direction known in advance is seen
+    sqrt(taxels) times more clearly than the energy of the whole frame.
+    """
+    n = frames.shape[0]
+    steps = np.arange(prediction) - prediction
+    design = np.stack([np.ones(prediction), steps.astype(float)], axis=1)
+    weights = np.linalg.pinv(design)[0]  # the line's value at step 0
+    scale = sigma * np.sqrt(1.0 + weights @ weights)
+    z = np.full(n, np.nan)
+    first = prediction + 1 + window
+    if n <= first:
+        return z
+    predicted = sum(
+        weight * frames[first - prediction + j : n - prediction + j]
+        for j, weight in enumerate(weights)
+    )
+    innovation = frames[first:] - predicted
+    direction = frames[first - prediction - 1 : n - prediction - 1] - frames[: n - first]
+    norm = np.linalg.norm(direction, axis=1)
+    norm[norm == 0] = np.inf
+    z[first:] = np.einsum("ij,ij->i", direction, innovation) / norm / scale
+    return z
+
+
+def run_ahead(
+    displacement: np.ndarray, sigma: float, warm_up: int, reference: int, gap: int
+) -> np.ndarray:
+    """How far the pattern runs ahead of its extrapolated track, in noise units, (n,).
+
+    A line fitted to the positions of `reference` frames ending `gap` frames before frame k
+    is extrapolated to k; the deviation along the direction of travel (that of the
+    displacement from the held position, the mean of the last 10 warm-up frames) is divided
+    by the position noise `sigma` [m] and averaged over 2 frames. While the pattern is
+    within 3 sigma of its held position, the size of the deviation (centred, 2 degrees of
+    freedom) is used instead. NaN during the warm-up.
+    """
+    n = displacement.shape[0]
+    steps = np.arange(reference) - (reference - 1) / 2
+    lever = (reference - 1) / 2 + gap
+    held = displacement[warm_up - 10 : warm_up].mean(axis=0)
+    ahead = np.full(n, np.nan)
+    for k in range(warm_up, n):
+        window = displacement[k - gap - reference + 1 : k - gap + 1]
+        slope = steps @ window / (steps @ steps)
+        deviation = displacement[k] - (window.mean(axis=0) + lever * slope)
+        moved = displacement[k] - held
+        if np.linalg.norm(moved) > 3 * sigma:
+            ahead[k] = deviation @ moved / np.linalg.norm(moved) / sigma
+        else:
+            ahead[k] = np.linalg.norm(deviation) / sigma - 1.25
+    smooth = ahead.copy()
+    smooth[warm_up + 1 :] = 0.5 * (ahead[warm_up + 1 :] + ahead[warm_up:-1])
+    return smooth
