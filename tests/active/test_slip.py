@@ -129,9 +129,10 @@ def test_detector_finds_the_onsets(slip):
     assert gross.channel == "piezo" and 0 <= gross.frame - slip.gross_frame <= 3
     assert gross.time == pytest.approx(gross.frame / 1000.0)
     assert [event["kind"] for event in found.to_dict()["events"]] == ["incipient", "gross"]
-    # the static array alone: the pattern's run-ahead, a few frames later
+    # the static array alone: the pattern's run-ahead; an alarm up to 2 frames before the
+    # 2-um truth threshold is at the onset, not premature (as `score_slip_detection` counts)
     alone = _detector().run(slip.static_frames, frame_rate=1000.0).first("gross")
-    assert alone.channel == "speed" and 0 <= alone.frame - slip.gross_frame <= 10
+    assert alone.channel == "speed" and -2 <= alone.frame - slip.gross_frame <= 10
     assert found.position_noise == pytest.approx(found.position_noise)  # set, not NaN
     assert 1e-7 < found.position_noise < 2e-5
 

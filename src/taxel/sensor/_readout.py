@@ -57,7 +57,8 @@ class Readout:
     crosstalk : float, default 0.0
         Fraction of a taxel's signal leaking into each edge neighbour [-].
     hysteresis : float, default 0.0
-        Width of the hysteresis loop, fraction of the signal range [-].
+        Width of the major hysteresis loop, as a fraction of the sensed quantity's working
+        range [-] (a Prandtl-Ishlinskii sum of eight play operators, acting on the quantity).
     creep : float, default 0.0
         Creep fraction of a held load (the reading grows up to (1 + creep) times) [-].
     creep_time : float, default 1.0

@@ -32,7 +32,8 @@ _FIELD_OF_QUANTITY = {
     "displacement": "displacement",
     "stress_difference": "pressure",  # computed from the surface pressure, see below
 }
-_DYNAMIC_QUANTITIES = ("stress",)  # piezoelectric: only changes are seen
+_DYNAMIC_QUANTITIES = ("stress",)
+_HYSTERESIS_OPERATORS = 8  # piezoelectric: only changes are seen
 
 
 @dataclass(frozen=True)
@@ -259,6 +260,19 @@ class TactileSensor:
         return chain.covering(np.stack([rest, loaded]))
 
     @cached_property
+    def quantity_span(self) -> float:
+        """Span of the sensed quantity over the working range, unloaded to a full-scale plate.
+
+        The unit is the transducer's `quantity_unit`; hysteresis loops are fractions of it.
+        """
+        grid = self.load_grid.shape
+        values = []
+        for pressure in (np.zeros(grid), np.full(grid, self.full_scale)):
+            fields = self.fields(pressure)
+            values.append(float(np.mean(self.sensed_quantity(pressure, fields))))
+        return abs(values[1] - values[0]) or 1.0
+
+    @cached_property
     def signal_range(self) -> tuple[float, float]:
         """(low, high) of the transducer's signal over the working range, with 5 % margin.
 
@@ -360,8 +374,14 @@ class TactileSensor:
                 moved, step, creep_fraction=readout.creep, time_constant=readout.creep_time
             )
         if readout.hysteresis:
-            span = float(np.ptp(moved)) or 1.0
-            moved = play_hysteresis(moved, loop_width=readout.hysteresis * span)
+            # the loop is a fraction of the working range, as `Readout` documents it; a sum of
+            # plays (Prandtl-Ishlinskii) rounds the loop's corners, where a single play would
+            # freeze the reading for any change smaller than the whole loop
+            moved = play_hysteresis(
+                moved,
+                loop_width=readout.hysteresis * self.quantity_span,
+                n_operators=_HYSTERESIS_OPERATORS,
+            )
         if self.is_dynamic:
             signal = self.transducer.respond(moved, time_step=step)
         else:
