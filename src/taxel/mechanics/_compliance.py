@@ -19,7 +19,7 @@ from taxel.mechanics._operators import (
     surface_displacement_operator,
 )
 
-__all__ = ["cover_operator", "gap_operator"]
+__all__ = ["WindowToGrid", "cover_operator", "gap_operator", "window_to_grid"]
 
 
 @lru_cache(maxsize=16)
@@ -90,3 +90,54 @@ def cover_operator(
     return surface_displacement_operator(
         shape, spacing, cover, periodic=periodic, thickness=thickness
     )
+
+
+class WindowToGrid:
+    """The gap operator from sources in a window to every cell of the full grid.
+
+    The contact lies in a window; its effect on the whole grid is a linear convolution of a
+    small source with the kernel, which needs an FFT only as large as the grid plus the
+    window, not twice the grid.
+    """
+
+    def __init__(self, kernel: np.ndarray, shape: tuple[int, int], window: tuple[int, ...]):
+        from scipy import fft
+
+        rows, cols = shape
+        top, left, height, width = window
+        self.shape = shape
+        self.window = (slice(top, top + height), slice(left, left + width))
+        self.fft_shape = (
+            fft.next_fast_len(rows + height - 1),
+            fft.next_fast_len(cols + width - 1, True),
+        )
+        padded = np.zeros(self.fft_shape)
+        # output cell i from source j (at top + j) sees kernel offset i - j - top
+        row_steps = np.arange(-(height - 1), rows)
+        col_steps = np.arange(-(width - 1), cols)
+        centre_row, centre_col = rows - 1, cols - 1
+        padded[np.ix_(row_steps % self.fft_shape[0], col_steps % self.fft_shape[1])] = kernel[
+            np.ix_(centre_row + row_steps - top, centre_col + col_steps - left)
+        ]
+        self._spectrum = fft.rfft2(padded)
+
+    def apply(self, source: np.ndarray) -> np.ndarray:
+        """The full grid's response to `source` (the window's values)."""
+        from scipy import fft
+
+        transformed = fft.rfft2(source, s=self.fft_shape)
+        transformed *= self._spectrum
+        return fft.irfft2(transformed, s=self.fft_shape)[: self.shape[0], : self.shape[1]]
+
+
+@lru_cache(maxsize=32)
+def window_to_grid(
+    shape: tuple[int, int],
+    spacing: tuple[float, float],
+    cover: ElasticMaterial,
+    indenter: ElasticMaterial | None,
+    thickness: float | None,
+    window: tuple[int, int, int, int],
+) -> WindowToGrid:
+    """`WindowToGrid` for a window (top, left, height, width) of a grid (cached)."""
+    return WindowToGrid(_gap_kernel(shape, spacing, cover, indenter, thickness), shape, window)

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from taxel._validation import check_positive, check_shape
-from taxel.mechanics._compliance import cover_operator, gap_operator
+from taxel.mechanics._compliance import cover_operator, gap_operator, window_to_grid
 from taxel.mechanics._materials import ElasticMaterial
 from taxel.mechanics._operators import ConvolutionOperator, as_spacing
 
@@ -358,7 +358,8 @@ def solve_contact(
         if whole_grid or not loop.converged or iterations >= max_iterations:
             break
         # any penetration outside the window means the window was too small
-        full_response = full.apply(total_pressure)
+        box = (window[0].start, window[1].start, *window_shape)
+        full_response = window_to_grid(shape, *configuration, box).apply(loop.pressure)
         gap = full_response + heights - loop.approach
         scale = max(float(np.max(np.abs(gap[window]))), abs(loop.approach), 1e-300)
         inside = np.zeros(shape, dtype=bool)
