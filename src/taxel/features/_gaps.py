@@ -167,30 +167,38 @@ def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
         if prepared.baseline + f * prepared.contrast > prepared.low
     ] + [prepared.low]
     for level in levels:
+        # the non-contact side at this level, in one comparison (`smooth < level` is
+        # `1 - (smooth >= level)`)
         if level == prepared.low:
-            inside = prepared.mask
+            outside = 1 - prepared.mask
         else:
-            inside = (prepared.smooth >= level).view(np.uint8)
+            outside = (prepared.smooth < level).view(np.uint8)
         # two-level hierarchy: every region's outer outline is at the top, however nested
-        contours, hierarchy = cv2.findContours(1 - inside, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
+        contours, hierarchy = cv2.findContours(outside, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
         sized = []
-        for contour, links in zip(contours, hierarchy[0] if contours else (), strict=True):
-            if links[3] >= 0 or contour.shape[0] < 3:
+        parents = hierarchy[0][:, 3].tolist() if contours else []
+        for contour, parent in zip(contours, parents, strict=True):
+            points = contour.shape[0]
+            if parent >= 0 or points < 3:
                 continue
-            moments = cv2.moments(contour)
             # the outline runs through the outer taxels' centres: add half a taxel all round
-            area = moments["m00"] + 0.5 * contour.shape[0]
+            # (`contourArea` is the moments' m00, without building them all)
+            area = cv2.contourArea(contour) + 0.5 * points
             if area < smallest or area > limit:
                 continue
-            x, y = contour[:, 0, 0], contour[:, 0, 1]
-            run = int(np.count_nonzero((x == 0) | (y == 0) | (x == cols - 1) | (y == rows - 1)))
-            if run:
+            left, top, box_width, box_height = cv2.boundingRect(contour)
+            if left == 0 or top == 0 or left + box_width == cols or top + box_height == rows:
+                moments = cv2.moments(contour)
                 count = max(moments["m00"], 1e-9)
                 var_x, var_y = moments["mu20"] / count, moments["mu02"] / count
                 spread = math.hypot((var_x - var_y) / 2, moments["mu11"] / count)
                 length = math.sqrt(12.0 * ((var_x + var_y) / 2 + spread)) + 1.0
                 width = area / length
-                if length < _SLOT_ELONGATION * width or run > _SLOT_BORDER_WIDTHS * width + 2:
+                if length < _SLOT_ELONGATION * width:
+                    continue
+                # outline points on the array's border: all but those strictly inside it
+                run = points - cv2.countNonZero(cv2.inRange(contour, (1, 1), (cols - 2, rows - 2)))
+                if run > _SLOT_BORDER_WIDTHS * width + 2:
                     continue
             sized.append((area, contour))
         sized.sort(key=lambda item: -item[0])

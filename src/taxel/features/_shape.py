@@ -67,6 +67,7 @@ from taxel.features._measures import (
     to_metres_line,
 )
 from taxel.features._outline import (
+    bends,
     circle_spread,
     corner_score,
     free_chains,
@@ -215,6 +216,8 @@ def _free_outline(
             continue
         straight = False
         arms = two_arms(x, y)
+        if not bends(arms):
+            continue  # the corner score is 0 whatever the circle, and no corner is found
         round_spread, _ = circle_spread(x, y)
         corner = corner_score(min(single, round_spread), arms)
         # a vertex: two straight arms, which fit better than one circle (a curved edge,

@@ -33,6 +33,8 @@ _RING_POINTS = 32
 # Octave bands of spatial frequency, from the Nyquist limit down: [f/2, f], [f/4, f/2], ...
 _OCTAVES = 4
 _SPECTRUM_CACHE: dict[tuple, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = {}
+_RING_CACHE: dict[tuple[float, int], tuple[np.ndarray, ...]] = {}
+_SQUARES: dict[int, np.ndarray] = {}
 _THREE = np.ones((3, 3), np.uint8)
 
 
@@ -99,18 +101,53 @@ def _spectrum_layout(
     return layout
 
 
-def _offsets(radius: float, step: int) -> tuple[np.ndarray, np.ndarray]:
-    """Row and column offsets of the ring at `radius`, then of the curvatures' neighbours.
+def _offsets(radius: float, step: int) -> tuple[np.ndarray, ...]:
+    """Row and column offsets of the ring at `radius`, and of the curvatures' neighbours.
 
     The ring has `_RING_POINTS` points; the eight neighbours lie `step` away (E, W, S, N,
-    SE, SW, NE, NW).
+    SE, SW, NE, NW). Each is a (1, n) row, cached by (radius, step).
     """
-    angles = np.arange(_RING_POINTS) * (2 * math.pi / _RING_POINTS)
-    ring_rows = np.rint(radius * np.sin(angles)).astype(np.intp)
-    ring_cols = np.rint(radius * np.cos(angles)).astype(np.intp)
-    near_rows = np.array([0, 0, step, -step, step, step, -step, -step])
-    near_cols = np.array([step, -step, 0, 0, step, -step, step, -step])
-    return np.concatenate((ring_rows, near_rows)), np.concatenate((ring_cols, near_cols))
+    key = (radius, step)
+    offsets = _RING_CACHE.get(key)
+    if offsets is None:
+        angles = np.arange(_RING_POINTS) * (2 * math.pi / _RING_POINTS)
+        offsets = (
+            np.rint(radius * np.sin(angles)).astype(np.intp)[None, :],
+            np.rint(radius * np.cos(angles)).astype(np.intp)[None, :],
+            np.array([[0, 0, step, -step, step, step, -step, -step]], np.intp),
+            np.array([[step, -step, 0, 0, step, -step, step, -step]], np.intp),
+        )
+        _RING_CACHE[key] = offsets
+    return offsets
+
+
+def _square(size: int) -> np.ndarray:
+    """A size x size square structuring element (cached)."""
+    kernel = _SQUARES.get(size)
+    if kernel is None:
+        kernel = _SQUARES[size] = np.ones((size, size), np.uint8)
+    return kernel
+
+
+def _read(image: np.ndarray, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+    """`image` at (rows, cols), each clipped to the image (in place) as a replicated border."""
+    np.maximum(rows, 0, out=rows)
+    np.minimum(rows, image.shape[0] - 1, out=rows)
+    np.maximum(cols, 0, out=cols)
+    np.minimum(cols, image.shape[1] - 1, out=cols)
+    return image[rows, cols]
+
+
+def _first_of_each(points: np.ndarray, labels: np.ndarray) -> np.ndarray:
+    """The first of the points in each labelled plateau, in the order of the labels.
+
+    What ``points[np.unique(labels at points, return_index=True)[1]]`` gives, without
+    np.unique's sorting machinery (the points are few).
+    """
+    first: dict[int, int] = {}
+    for index, label in enumerate(labels[points[:, 1], points[:, 0]].tolist()):
+        first.setdefault(label, index)
+    return points[[first[label] for label in sorted(first)]]
 
 
 def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[int, float]:
@@ -134,7 +171,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     c0, c1 = max(left - grow, 0), min(left + width + grow, cols)
     image, mask = prepared.image[r0:r1, c0:c1], prepared.mask[r0:r1, c0:c1]
     smooth = cv2.GaussianBlur(image, (reach, reach), sigma, borderType=cv2.BORDER_REFLECT)
-    lowest = cv2.erode(smooth, np.ones((2 * math.ceil(radius) + 1,) * 2, np.uint8))
+    lowest = cv2.erode(smooth, _square(2 * math.ceil(radius) + 1))
     raw_noise = prepared.raw_noise
     if prepared.residual is not None:
         step = prepared.residual_step
@@ -144,31 +181,34 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     noise = raw_noise / (2.0 * math.sqrt(math.pi) * sigma)
     margin = np.float32(max(_MAXIMUM_SIGMAS * noise, 1e-9 * prepared.contrast, 1e-30))
     # a plateau of equal values is one maximum, not many: one taxel per connected plateau
-    peaks = (smooth >= cv2.dilate(smooth, _THREE)) & (smooth > lowest + margin)
+    lowest += margin
+    peaks = (smooth >= cv2.dilate(smooth, _THREE)) & (smooth > lowest)
     peaks = peaks.view(np.uint8) & mask
     points = cv2.findNonZero(peaks)
     if points is None:
         return 0, 0.0
     points = points.reshape(-1, 2)
     if points.shape[0] > 1:
-        labels = cv2.connectedComponents(peaks)[1]
-        points = points[np.unique(labels[points[:, 1], points[:, 0]], return_index=True)[1]]
-    step = max(int(round(local_sigma)), 1)
-    row_offsets, col_offsets = _offsets(radius, step)
-    rows = np.clip(points[:, 1:2] + row_offsets, 0, smooth.shape[0] - 1)
-    cols = np.clip(points[:, 0:1] + col_offsets, 0, smooth.shape[1] - 1)
-    around = smooth[rows, cols]
-    heights = smooth[points[:, 1], points[:, 0]]
-    near = around[:, _RING_POINTS:] - heights[:, None]  # E, W, S, N, SE, SW, NE, NW
-    high = heights > around[:, :_RING_POINTS].max(axis=1) + margin
-    # principal curvatures by central differences one sigma each way
+        points = _first_of_each(points, cv2.connectedComponents(peaks)[1])
+    ring_rows, ring_cols, near_rows, near_cols = _offsets(radius, max(int(round(local_sigma)), 1))
+    point_rows, point_cols = points[:, 1:2], points[:, 0:1]
+    heights = smooth[point_rows[:, 0], point_cols[:, 0]]
+    ring = _read(smooth, point_rows + ring_rows, point_cols + ring_cols)
+    high = heights > np.maximum.reduce(ring, axis=1) + margin
+    if not high.any():
+        return 0, 0.0
+    # principal curvatures by central differences one sigma each way, on the points that
+    # stand above their ring
+    heights = heights[high]
+    near = _read(smooth, point_rows[high] + near_rows, point_cols[high] + near_cols)
+    near -= heights[:, None]  # E, W, S, N, SE, SW, NE, NW
     fxx, fyy = near[:, 0] + near[:, 1], near[:, 2] + near[:, 3]
     fxy = 0.25 * (near[:, 4] - near[:, 5] - near[:, 6] + near[:, 7])
     half_trace, root = 0.5 * (fxx + fyy), np.sqrt(0.25 * (fxx - fyy) ** 2 + fxy**2)
-    high &= half_trace + root <= _ISOTROPY * (half_trace - root)  # weak vs strong, both < 0
-    if not high.any():
+    peaked = half_trace + root <= _ISOTROPY * (half_trace - root)  # weak vs strong, both < 0
+    if not peaked.any():
         return 0, 0.0
-    return int(high.sum()), float(heights[high].mean()) - prepared.baseline
+    return int(peaked.sum()), float(heights[peaked].mean()) - prepared.baseline
 
 
 def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Texture:
@@ -185,9 +225,11 @@ def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Textur
     # the entire image)
     image = prepared.image
     window, frequency, order, starts = _spectrum_layout(image.shape, prepared.pitch)
-    ripple = (image - np.float32(cv2.mean(image)[0])) * window
+    ripple = image - np.float32(cv2.mean(image)[0])
+    ripple *= window
     spectrum = cv2.dft(ripple, flags=cv2.DFT_COMPLEX_OUTPUT)
-    power = (spectrum[..., 0] ** 2 + spectrum[..., 1] ** 2).ravel()
+    spectrum *= spectrum  # squares of the real and imaginary parts
+    power = (spectrum[..., 0] + spectrum[..., 1]).ravel()
     power[0] = 0.0
     total = float(power.sum(dtype=np.float64))
     if total <= 0:
