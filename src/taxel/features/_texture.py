@@ -11,7 +11,7 @@ import numpy as np
 
 from taxel._validation import check_range
 from taxel.features._fitting import dot
-from taxel.features._image import Prepared, noise_from_residual, prepare
+from taxel.features._image import Prepared, contact_box, noise_from_residual, prepare
 
 __all__ = ["Texture", "high_points", "texture_core", "texture_measures"]
 
@@ -165,7 +165,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     local_sigma = sigma
     radius = _RING_RADIUS * local_sigma
     grow = reach // 2 + math.ceil(radius) + 2
-    left, top, width, height = cv2.boundingRect(prepared.mask)
+    left, top, width, height = contact_box(prepared)
     rows, cols = prepared.image.shape
     r0, r1 = max(top - grow, 0), min(top + height + grow, rows)
     c0, c1 = max(left - grow, 0), min(left + width + grow, cols)
