@@ -11,7 +11,7 @@ import numpy as np
 
 from taxel._validation import as_finite_array, check_positive, check_range
 from taxel.features._contact import Contact, contact_regions
-from taxel.features._fitting import fit_line_and_circle
+from taxel.features._fitting import CircleFit, LineFit, fit_line_and_circle
 from taxel.features._gaps import HoleReport, SlotReport, gaps_core
 from taxel.features._holes import diameter_test, outline_contours, outline_taxels
 from taxel.features._image import prepare
@@ -291,9 +291,16 @@ def extract(
     holes, slots, explained = gaps_core(prepared, textured=textured)
     contours = list(outline_contours(prepared))
     cols, rows = outline_taxels(prepared, contours)
-    outline_fit = None
-    if cols.size >= 3:  # one line and circle through the outline, for shape and hole test
-        outline_fit = fit_line_and_circle(cols.astype(float), rows.astype(float))
+    fits: list[tuple[LineFit, CircleFit] | None] = []
+
+    def outline_fit() -> tuple[LineFit, CircleFit] | None:
+        # one line and circle through the outline, for the type and the hole test, fitted
+        # when first asked for: a band's type and a convex contact's hole test do without
+        if not fits:
+            x, y = cols.astype(float), rows.astype(float)
+            fits.append(fit_line_and_circle(x, y) if cols.size >= 3 else None)
+        return fits[0]
+
     shape = shape_core(
         prepared,
         contact,
@@ -308,9 +315,10 @@ def extract(
     plane = plane_core(prepared, depth_map, contours=contours)
     # a line crosses the outline of one convex region at most twice: no need to walk it
     convex = len(contours) == 1 and plane.fill >= _CONVEX_FILL
-    test = not convex and diameter_test(
-        prepared, cols, rows, outline_fit[1] if outline_fit else None
-    )
+    test = False
+    if not convex:
+        fit = outline_fit()
+        test = diameter_test(prepared, cols, rows, fit[1] if fit else None)
     hole_report = HoleReport(bool(holes), len(holes), tuple(holes), test)
     slot_report = SlotReport(bool(slots), len(slots), tuple(slots))
     located = _locate(contact, shape, plane, depth_map, pose_matrix)

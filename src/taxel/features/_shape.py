@@ -47,6 +47,7 @@ mechanics) and its depth.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -82,6 +83,7 @@ from taxel.features._texture import high_points
 __all__ = ["CONTACT_TYPES", "ContactShape", "classify_contact", "is_textured", "shape_core"]
 
 CONTACT_TYPES = ("none", "point", "line", "arc", "surface", "corner")
+_OutlineFit = tuple[LineFit, CircleFit]
 
 # Several contacts: a region counts when it holds >= 5 % of the contact area; three such
 # regions is a texture or a multi-point grip, not one shape.
@@ -240,12 +242,13 @@ def shape_core(
     high_point_count: int,
     point_size: float = _POINT_SIZE,
     contours: list[np.ndarray] | None = None,
-    outline_fit: tuple[LineFit, CircleFit] | None = None,
+    outline_fit: _OutlineFit | Callable[[], _OutlineFit | None] | None = None,
 ) -> ContactShape:
     """Classify a prepared image (internal core of `classify_contact`).
 
     `contours`: the contact's outlines (every taxel), if already found; `outline_fit`:
-    the line and circle fitted to them in taxel units, if already fitted. Only the
+    the line and circle fitted to them in taxel units, or a function that fits them when
+    first called (a band's type does without). Only the
     measures a rule needs are computed; the others are reported as 0.
     """
     pitch = prepared.mean_pitch
@@ -264,11 +267,13 @@ def shape_core(
 
     def result(kind: str, confidence: float, corner: float, rule: str) -> ContactShape:
         fitted_line, fitted_circle = line, circle
-        if fitted_line is None and outline_fit is not None:
-            fitted_line, fitted_circle = outline_fit
-        elif fitted_line is None and outline:  # the outline's own line and circle
-            points = np.concatenate(outline).reshape(-1, 2).astype(float)
-            fitted_line, fitted_circle = fit_line_and_circle(points[:, 0], points[:, 1])
+        if fitted_line is None:
+            fit = outline_fit() if callable(outline_fit) else outline_fit
+            if fit is not None:
+                fitted_line, fitted_circle = fit
+            elif outline:  # the outline's own line and circle
+                points = np.concatenate(outline).reshape(-1, 2).astype(float)
+                fitted_line, fitted_circle = fit_line_and_circle(points[:, 0], points[:, 1])
         if fitted_line is not None:
             fitted_line = to_metres_line(fitted_line, prepared)
             fitted_circle = to_metres_circle(fitted_circle, prepared)

@@ -32,7 +32,7 @@ _RING_RADIUS = 2.0  # [sigma]
 _RING_POINTS = 32
 # Octave bands of spatial frequency, from the Nyquist limit down: [f/2, f], [f/4, f/2], ...
 _OCTAVES = 4
-_SPECTRUM_CACHE: dict[tuple, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = {}
+_SPECTRUM_CACHE: dict[tuple, tuple[np.ndarray, ...]] = {}
 _RING_CACHE: dict[tuple[float, int], tuple[np.ndarray, ...]] = {}
 _SQUARES: dict[int, np.ndarray] = {}
 _THREE = np.ones((3, 3), np.uint8)
@@ -74,13 +74,13 @@ class Texture:
     roughness: float
 
 
-def _spectrum_layout(
-    shape: tuple[int, int], pitch: tuple[float, float]
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Hann window, frequency [cycles/m] per bin, bins sorted by octave band, band starts.
+def _spectrum_layout(shape: tuple[int, int], pitch: tuple[float, float]) -> tuple:
+    """Window, frequencies and octave bands of a spectrum (cached per shape and pitch).
 
-    Bins are numbered as the flattened (rows, cols) spectrum; octave 0 is the finest, and
-    the mean and the frequencies below the last octave come last (unused).
+    Returns the Hann window, the frequency [cycles/m] per bin, the bins sorted by octave
+    band, the bands' starts in that order, and which bands hold no bin (None when all hold
+    some). Bins are numbered as the flattened (rows, cols) spectrum; octave 0 is the
+    finest, and the mean and the frequencies below the last octave come last (unused).
     """
     key = (shape, pitch)
     layout = _SPECTRUM_CACHE.get(key)
@@ -96,7 +96,14 @@ def _spectrum_layout(
         band[0] = _OCTAVES  # the mean
         order = np.argsort(band, kind="stable")
         starts = np.searchsorted(band[order], np.arange(_OCTAVES + 1))
-        layout = (window, frequency.astype(np.float32), order, starts)
+        empty = starts[1:] == starts[:-1]  # bands without bins (tiny images)
+        layout = (
+            window,
+            frequency.astype(np.float32),
+            order,
+            starts,
+            empty if empty.any() else None,
+        )
         _SPECTRUM_CACHE[key] = layout
     return layout
 
@@ -224,7 +231,7 @@ def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Textur
     # ripple: the whole image minus its mean, Hann-windowed (the seed measures texture over
     # the entire image)
     image = prepared.image
-    window, frequency, order, starts = _spectrum_layout(image.shape, prepared.pitch)
+    window, frequency, order, starts, empty = _spectrum_layout(image.shape, prepared.pitch)
     ripple = image - np.float32(cv2.mean(image)[0])
     ripple *= window
     spectrum = cv2.dft(ripple, flags=cv2.DFT_COMPLEX_OUTPUT)
@@ -235,7 +242,8 @@ def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Textur
     if total <= 0:
         return Texture(n_maxima, mean_height, density, None, None, (0.0,) * _OCTAVES, roughness)
     sums = np.add.reduceat(power[order].astype(np.float64), starts)[:_OCTAVES]
-    sums[starts[1:] == starts[:-1]] = 0.0  # an empty band (tiny images) holds nothing
+    if empty is not None:
+        sums[empty] = 0.0  # an empty band holds nothing
     bands = sums / total
     strongest = float(frequency[cv2.minMaxLoc(power.reshape(1, -1))[3][0]])  # fast argmax
     centroid = dot(power, frequency) / total
