@@ -18,7 +18,7 @@ from taxel.features._image import prepare
 from taxel.features._shape import ContactShape, is_textured, shape_core
 from taxel.features._surface import ContactPlane, plane_core
 from taxel.features._texture import Texture, texture_core
-from taxel.frames import as_pose, transform_directions, transform_points
+from taxel.frames import as_pose
 
 __all__ = ["ContactPose", "TactileFeatures", "extract"]
 
@@ -190,11 +190,14 @@ def _locate(
     angle = shape.line.angle_rad if use_line and shape.line else contact.orientation_rad
     axis = (math.cos(angle), math.sin(angle), 0.0)
     normal = plane.normal if plane.normal is not None else (0.0, 0.0, 1.0)
+    # `pose` was checked by `as_pose`: apply it as `transform_points` and
+    # `transform_directions` do, without checking it again for each vector
+    rotation_t = pose[:3, :3].T
     return ContactPose(
         position,
-        tuple(float(v) for v in transform_points(pose, position)),  # type: ignore[arg-type]
-        tuple(float(v) for v in transform_directions(pose, axis)),  # type: ignore[arg-type]
-        tuple(float(v) for v in transform_directions(pose, normal)),  # type: ignore[arg-type]
+        tuple((np.asarray(position, np.float64) @ rotation_t + pose[:3, 3]).tolist()),
+        tuple((np.asarray(axis, np.float64) @ rotation_t).tolist()),
+        tuple((np.asarray(normal, np.float64) @ rotation_t).tolist()),
     )
 
 
