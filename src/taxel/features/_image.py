@@ -150,6 +150,31 @@ def contact_box(prepared: Prepared) -> tuple[int, int, int, int]:
     return box
 
 
+def component_outlines(
+    region: np.ndarray, outlines: tuple[np.ndarray, ...], hierarchy: np.ndarray
+) -> tuple[np.ndarray, ...]:
+    """The outlines of one region, picked from those of a whole image (internal).
+
+    `outlines` and `hierarchy` are ``cv2.findContours(image, cv2.RETR_CCOMP, ...)`` of a
+    binary image of which `region` (uint8) is one 8-connected component. Returns the
+    region's outer boundary and hole walls in the order ``cv2.findContours(region,
+    cv2.RETR_LIST, ...)`` gives them (the holes, then the outer boundary), which saves
+    tracing the region again. `tests/features/test_features.py` checks the order.
+    """
+    links = hierarchy[0].tolist()  # per outline: next, previous, first child, parent
+    index = next(
+        i
+        for i, link in enumerate(links)
+        if link[3] < 0 and region[outlines[i][0, 0, 1], outlines[i][0, 0, 0]]
+    )
+    holes = []
+    child = links[index][2]
+    while child >= 0:
+        holes.append(outlines[child])
+        child = links[child][0]
+    return (*holes, outlines[index])
+
+
 def pitch_pair(sensor_or_pitch: Any) -> tuple[float, float]:
     """(row pitch, column pitch) [m] from a pitch, a pair, or an object with `taxel_pitch`.
 
@@ -388,7 +413,8 @@ def prepare(
     cv2.floodFill(candidates, filled, peak_at, 1, 0, 0, _FILL_8 | cv2.FLOODFILL_MASK_ONLY)
     region = np.ascontiguousarray(filled[1:-1, 1:-1])
     if cv2.countNonZero(seeds & region) == cv2.countNonZero(seeds):
-        return Prepared(mask=region, labels=region, n_regions=1, **common)
+        found = component_outlines(region, outlines, hierarchy)
+        return Prepared(mask=region, labels=region, n_regions=1, outlines=found, **common)
     count, labels = cv2.connectedComponents(candidates, connectivity=8, ltype=cv2.CV_32S)
     seeded = np.bincount(labels[seeds.view(bool)], minlength=count) > 0
     seeded[0] = False
