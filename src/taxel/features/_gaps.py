@@ -207,14 +207,19 @@ def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
 
 
 def _reaches_border(
-    region: np.ndarray, r0: int, r1: int, c0: int, c1: int, shape: tuple[int, int]
+    box: tuple[int, int, int, int], r0: int, c0: int, shape: tuple[int, int]
 ) -> bool:
-    """Whether a window's region touches the array's border."""
-    return bool(
-        (r0 == 0 and region[0].any())
-        or (r1 == shape[0] and region[-1].any())
-        or (c0 == 0 and region[:, 0].any())
-        or (c1 == shape[1] and region[:, -1].any())
+    """Whether a region touches the array's border, from its bounding box in a window.
+
+    `box` is the region's (left, top, width, height) in the window whose corner is at
+    row `r0`, column `c0` of the array (an empty region has width 0).
+    """
+    left, top, width, height = box
+    return width > 0 and (
+        r0 + top == 0
+        or c0 + left == 0
+        or r0 + top + height == shape[0]
+        or c0 + left + width == shape[1]
     )
 
 
@@ -236,7 +241,7 @@ def _measure(
     away = cv2.distanceTransform(1 - own, cv2.DIST_L2, 3)
     ring = (away > 2.0) & (away <= 6.0)
     wall = ring & (window >= level)
-    if not wall.any():
+    if not np.count_nonzero(wall):
         return None
     if cv2.countNonZero((ring & (window >= prepared.high)).view(np.uint8)) < _FACE * (
         cv2.countNonZero(ring.view(np.uint8))
@@ -244,21 +249,24 @@ def _measure(
         return None  # no face around it (a noisy fringe, the valleys of a texture)
     values = window[wall]
     tenth, ninetieth = (values.size - 1) // 10, (values.size - 1) * 9 // 10
-    ordered = np.partition(values, (tenth, ninetieth))
-    surround = float(ordered[ninetieth])
-    evenness = (float(ordered[tenth]) - prepared.baseline) / max(
+    values.partition((tenth, ninetieth))  # in place: `values` is a copy already
+    surround = float(values[ninetieth])
+    evenness = (float(values[tenth]) - prepared.baseline) / max(
         surround - prepared.baseline, 1e-30
     )
     half = prepared.baseline + _DIP * (surround - prepared.baseline)
     if bottom > half:
         return None  # a dimple of the pressure, not a gap in the contact
     region = ((away <= 3.0) & (window < half)).view(np.uint8)
-    if _reaches_border(region, r0, r1, c0, c1, shape) and not _reaches_border(
-        own, r0, r1, c0, c1, shape
+    box = cv2.boundingRect(region)
+    # (the filled outline's bounding box is the outline's)
+    if _reaches_border(box, r0, c0, shape) and not _reaches_border(
+        (left - c0, top - r0, width, height), r0, c0, shape
     ):
         # the face itself falls below the half level toward the array's edge (a pad
         # presses less at its rim): measure the gap where it is enclosed instead
         region = own & (window < half).view(np.uint8)
+        box = cv2.boundingRect(region)
     moments = cv2.moments(region, binaryImage=True)
     area = moments["m00"]
     where = (slice(r0, r1), slice(c0, c1))
@@ -279,10 +287,10 @@ def _measure(
         float((mean_r - (rows - 1) / 2) * row_pitch),
     )
     gap_area = area * row_pitch * col_pitch
-    inradius = float(cv2.distanceTransform(region, cv2.DIST_L2, 3).max())
-    border = _reaches_border(region, r0, r1, c0, c1, shape)
+    inradius = cv2.minMaxLoc(cv2.distanceTransform(region, cv2.DIST_L2, 3))[1]
+    border = _reaches_border(box, r0, c0, shape)
     edge = max(_BORDER_TAXELS, prepared.cover_depth / pitch)
-    left, top, width, height = cv2.boundingRect(region)
+    left, top, width, height = box
     clearance = min(c0 + left, r0 + top, cols - c0 - left - width, rows - r0 - top - height)
     if not border and clearance >= edge:
         round_enough = math.sqrt(minor / major) >= _HOLE_AXIS_RATIO

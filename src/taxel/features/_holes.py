@@ -66,7 +66,7 @@ def diameter_test(
     middle = steps.size // 2
     before = np.add.reduce(crossed[:, :middle], axis=1)
     after = np.add.reduce(crossed[:, middle:], axis=1)
-    return bool(np.any((before == 2) & (after == 2) & ~touched[:, middle]))
+    return bool(np.count_nonzero((before == 2) & (after == 2) & ~touched[:, middle]))
 
 
 def outline_contours(prepared: Prepared) -> tuple[np.ndarray, ...]:

@@ -273,14 +273,11 @@ def laplacian_residual(image: np.ndarray, step: int = 1) -> np.ndarray:
     Shape (len(range(1, rows - 1, step)), cols - 2): rows 1, 1 + step, ... of the image.
     """
     end = image.shape[0] - 1
-    centre = image[1:end:step, 1:-1]
-    around = (
-        image[0 : end - 1 : step, 1:-1]
-        + image[2 : end + 1 : step, 1:-1]
-        + image[1:end:step, :-2]
-        + image[1:end:step, 2:]
-    )
-    return centre - np.float32(0.25) * around
+    around = image[0 : end - 1 : step, 1:-1] + image[2 : end + 1 : step, 1:-1]
+    around += image[1:end:step, :-2]
+    around += image[1:end:step, 2:]
+    around *= np.float32(0.25)
+    return np.subtract(image[1:end:step, 1:-1], around, out=around)
 
 
 def noise_from_residual(residual: np.ndarray) -> float:
@@ -402,7 +399,7 @@ def prepare(
     # region (an island inside a hole is put at the top level too), the usual case, and
     # it is seeded by the peak itself; its outlines serve every later feature
     outlines, hierarchy = cv2.findContours(candidates, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
-    if int(np.count_nonzero(hierarchy[0][:, 3] < 0)) == 1:
+    if len(outlines) == 1 or int(np.count_nonzero(hierarchy[0][:, 3] < 0)) == 1:
         return Prepared(
             mask=candidates, labels=candidates, n_regions=1, outlines=outlines, **common
         )

@@ -97,15 +97,15 @@ def two_arms(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
     from that one; the vertex is the point farthest from the chord between them.
     """
     # plain floats for the scalar arithmetic (NumPy scalars cost several times more)
-    far_a = int(np.argmax((x - mean(x)) ** 2 + (y - mean(y)) ** 2))
+    far_a = int(((x - mean(x)) ** 2 + (y - mean(y)) ** 2).argmax())
     ax, ay = x[far_a].item(), y[far_a].item()
-    far_b = int(np.argmax((x - ax) ** 2 + (y - ay) ** 2))
+    far_b = int(((x - ax) ** 2 + (y - ay) ** 2).argmax())
     bx, by = x[far_b].item(), y[far_b].item()
     chord = math.hypot(bx - ax, by - ay)
     if chord == 0:
         return math.inf, math.pi
     off = np.abs((bx - ax) * (ay - y) - (ax - x) * (by - ay)) / chord
-    vertex = int(np.argmax(off))
+    vertex = int(off.argmax())
     if off[vertex] < _MIN_VERTEX_OFFSET:
         return math.inf, math.pi
     vx, vy = x[vertex].item(), y[vertex].item()
@@ -117,7 +117,8 @@ def two_arms(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
         np.minimum(np.maximum(t, 0, out=t), 1, out=t)  # np.clip(t, 0, 1), without its wrapper
         distances.append(np.hypot(x - vx - t * (ex - vx), y - vy - t * (ey - vy)))
     first = distances[0] <= distances[1]
-    smaller = min(int(first.sum()), int((~first).sum()))
+    count = int(np.count_nonzero(first))
+    smaller = min(count, first.size - count)
     if smaller < _MIN_ARM * x.size or smaller < 3:
         return math.inf, math.pi
     worst = max(line_spread(x[first], y[first])[0], line_spread(x[~first], y[~first])[0])

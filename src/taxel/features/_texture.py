@@ -202,7 +202,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     heights = smooth[point_rows[:, 0], point_cols[:, 0]]
     ring = _read(smooth, point_rows + ring_rows, point_cols + ring_cols)
     high = heights > np.maximum.reduce(ring, axis=1) + margin
-    if not high.any():
+    if not np.count_nonzero(high):
         return 0, 0.0
     # principal curvatures by central differences one sigma each way, on the points that
     # stand above their ring
@@ -213,9 +213,10 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     fxy = 0.25 * (near[:, 4] - near[:, 5] - near[:, 6] + near[:, 7])
     half_trace, root = 0.5 * (fxx + fyy), np.sqrt(0.25 * (fxx - fyy) ** 2 + fxy**2)
     peaked = half_trace + root <= _ISOTROPY * (half_trace - root)  # weak vs strong, both < 0
-    if not peaked.any():
+    count = int(np.count_nonzero(peaked))
+    if not count:
         return 0, 0.0
-    return int(peaked.sum()), float(heights[peaked].mean()) - prepared.baseline
+    return count, float(heights[peaked].mean()) - prepared.baseline
 
 
 def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Texture:
