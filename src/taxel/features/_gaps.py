@@ -65,6 +65,8 @@ _MAX_BASINS = 24
 # into the array's edge.
 _BORDER_TAXELS = 2.0
 _GROW = np.ones((7, 7), np.uint8)
+# A basin's wall is read up to this many taxels from it.
+_REACH = 6
 
 
 @dataclass(frozen=True)
@@ -223,15 +225,42 @@ def _reaches_border(
     )
 
 
+def _moments_of_old(
+    region: np.ndarray,
+    bounds: tuple[int, int, int, int],
+    contour: np.ndarray,
+    shape: tuple[int, int],
+) -> tuple[dict, int, int]:
+    """Moments of a window's region, taken in the gap test's original, wider window.
+
+    The region, in the window of rows r0:r1 and columns c0:c1 (`bounds`), is placed in
+    the window the gap test was written with (margin 6 taxels plus half the basin's
+    size): the moments' rounding depends on their origin, so the results stay the same
+    bit for bit. Returns the moments and the wider window's corner (row, column).
+    """
+    r0, r1, c0, c1 = bounds
+    left, top, width, height = cv2.boundingRect(contour)
+    margin = _REACH + max(width, height) // 2
+    wide_r0, wide_r1 = max(top - margin, 0), min(top + height + margin, shape[0])
+    wide_c0, wide_c1 = max(left - margin, 0), min(left + width + margin, shape[1])
+    if (wide_r0, wide_r1, wide_c0, wide_c1) != bounds:
+        wide = np.zeros((wide_r1 - wide_r0, wide_c1 - wide_c0), np.uint8)
+        wide[r0 - wide_r0 : r1 - wide_r0, c0 - wide_c0 : c1 - wide_c0] = region
+        region = wide
+    return cv2.moments(region, binaryImage=True), wide_r0, wide_c0
+
+
 def _measure(
     prepared: Prepared, contour: np.ndarray, level: float
 ) -> tuple[Hole | Slot | None, tuple[slice, slice], np.ndarray, float] | None:
     """Decide whether one basin holds a hole or a slot, and measure it."""
     shape = prepared.image.shape
     left, top, width, height = cv2.boundingRect(contour)
-    margin = 6 + max(width, height) // 2
-    r0, r1 = max(top - margin, 0), min(top + height + margin, shape[0])
-    c0, c1 = max(left - margin, 0), min(left + width + margin, shape[1])
+    # everything below is read within 6 taxels of the basin (the wall's ring): a window
+    # that wide around it holds it all (distances to the basin do not depend on the
+    # window, as long as it holds the basin)
+    r0, r1 = max(top - _REACH, 0), min(top + height + _REACH, shape[0])
+    c0, c1 = max(left - _REACH, 0), min(left + width + _REACH, shape[1])
     window = prepared.smooth[r0:r1, c0:c1]
     own = np.zeros(window.shape, np.uint8)
     cv2.drawContours(own, [contour], -1, 1, thickness=-1, offset=(-c0, -r0))
@@ -239,7 +268,7 @@ def _measure(
     # distance of every window taxel from the basin: the wall is read 2-6 taxels out,
     # past the blurred transition, and the gap grown up to 3 taxels to the half level
     away = cv2.distanceTransform(1 - own, cv2.DIST_L2, 3)
-    ring = (away > 2.0) & (away <= 6.0)
+    ring = (away > 2.0) & (away <= float(_REACH))
     wall = ring & (window >= level)
     if not np.count_nonzero(wall):
         return None
@@ -267,14 +296,14 @@ def _measure(
         # presses less at its rim): measure the gap where it is enclosed instead
         region = own & (window < half).view(np.uint8)
         box = cv2.boundingRect(region)
-    moments = cv2.moments(region, binaryImage=True)
+    moments, origin_r, origin_c = _moments_of_old(region, (r0, r1, c0, c1), contour, shape)
     area = moments["m00"]
     where = (slice(r0, r1), slice(c0, c1))
     if area < _MIN_GAP_AREA:
         return None, where, region, evenness
     row_pitch, col_pitch = prepared.pitch
     pitch = math.sqrt(row_pitch * col_pitch)
-    mean_r, mean_c = moments["m01"] / area + r0, moments["m10"] / area + c0
+    mean_r, mean_c = moments["m01"] / area + origin_r, moments["m10"] / area + origin_c
     var_y = (moments["mu02"] / area + 1 / 12) * row_pitch**2
     var_x = (moments["mu20"] / area + 1 / 12) * col_pitch**2
     cov = moments["mu11"] / area * row_pitch * col_pitch
@@ -340,12 +369,14 @@ def gaps_core(
     evenness: list[float] = []
     if not prepared.present:
         return holes, slots, explained
+    marked = False  # whether `explained` holds a gap yet
     for contour, level in _basins(prepared):
-        moments = cv2.moments(contour)
-        if moments["m00"] > 0:  # a basin already explained (at a higher level) is done
-            col, row = moments["m10"] / moments["m00"], moments["m01"] / moments["m00"]
-            if explained[int(round(row)), int(round(col))]:
-                continue
+        if marked:  # a basin already explained (at a higher level) is done
+            moments = cv2.moments(contour)
+            if moments["m00"] > 0:
+                col, row = moments["m10"] / moments["m00"], moments["m01"] / moments["m00"]
+                if explained[int(round(row)), int(round(col))]:
+                    continue
         measured = _measure(prepared, contour, level)
         if measured is None or measured[0] is None:
             continue
@@ -356,6 +387,7 @@ def gaps_core(
         elif not textured:
             slots.append(found)
         explained[where] |= cv2.dilate(region, _GROW)
+        marked = True
     if textured and not _perforated(holes, evenness):
         holes = []
     return holes, slots, explained
