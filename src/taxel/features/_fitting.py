@@ -19,6 +19,7 @@ __all__ = [
     "fit_line_and_circle",
     "mean",
     "std",
+    "taubin_circle",
 ]
 
 # Gauss-Newton steps after the algebraic fit; 3 bring the geometric RMS to within 1e-6 of
@@ -106,8 +107,11 @@ def _points(points: Any, minimum: int) -> np.ndarray:
 def line_fit_core(x: np.ndarray, y: np.ndarray) -> LineFit:
     """Total least squares line through (x, y) (validated arrays; internal)."""
     mean_x, mean_y = mean(x), mean(y)
-    dx, dy = x - mean_x, y - mean_y
-    sxx, syy, sxy = dot(dx, dx), dot(dy, dy), dot(dx, dy)
+    centred = np.empty((2, x.size))
+    np.subtract(x, mean_x, out=centred[0])
+    np.subtract(y, mean_y, out=centred[1])
+    # the three sums of products in one einsum (the same loop, and sums, as three `dot`s)
+    (sxx, sxy), (_, syy) = np.einsum("in,jn->ij", centred, centred).tolist()
     angle = 0.5 * math.atan2(2 * sxy, sxx - syy)
     angle %= math.pi
     # the smallest eigenvalue of the scatter matrix is the sum of squared distances
@@ -170,15 +174,13 @@ def _taubin(
     return a, b, math.sqrt(radius_sq)
 
 
-def fit_line_and_circle(
-    x: np.ndarray, y: np.ndarray, weight: np.ndarray | None = None
-) -> tuple[LineFit, CircleFit]:
-    """Weighted total-least-squares line and Taubin circle from one pass of moments.
+def _centred_moments(
+    x: np.ndarray, y: np.ndarray, weight: np.ndarray | None
+) -> tuple[np.ndarray, float, float, float, tuple[float, ...]]:
+    """Centred coordinates, their mean and total weight, and their moments up to 4th order.
 
-    Both fits need the same centred moments up to fourth order; they are formed in one
-    ``einsum`` (no BLAS; see `dot`). The line is the weighted principal axis: for the
-    taxels of a straight band weighted by their signal, the band's centre line, with
-    `rms_m` its half-width over sqrt(3). The circle is Taubin's (see `circle_fit_algebraic`).
+    Returns ``terms`` (rows u, v, u^2 + v^2), mean x, mean y, the total weight and the
+    weighted means (m_uu, m_vv, m_uv, m_uz, m_vz, m_zz) as plain floats.
     """
     n = int(x.size)
     if weight is None:
@@ -197,18 +199,47 @@ def fit_line_and_circle(
     (m_uu, m_uv, m_uz), (_, m_vv, m_vz), (_, _, m_zz) = (
         np.einsum("in,jn->ij", weighted, terms) / total
     ).tolist()
+    return terms, mean_x, mean_y, total, (m_uu, m_vv, m_uv, m_uz, m_vz, m_zz)
+
+
+def taubin_circle(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float] | None:
+    """Centre (x, y) and radius of the circle of `fit_line_and_circle`, without its RMS.
+
+    None where that fit gives no circle (collinear points).
+    """
+    _, mean_x, mean_y, _, moments = _centred_moments(x, y, None)
+    solution = _taubin(*moments)
+    if solution is None:
+        return None
+    a, b, radius = solution
+    return mean_x + a, mean_y + b, radius
+
+
+def fit_line_and_circle(
+    x: np.ndarray, y: np.ndarray, weight: np.ndarray | None = None
+) -> tuple[LineFit, CircleFit]:
+    """Weighted total-least-squares line and Taubin circle from one pass of moments.
+
+    Both fits need the same centred moments up to fourth order; they are formed in one
+    ``einsum`` (no BLAS; see `dot`). The line is the weighted principal axis: for the
+    taxels of a straight band weighted by their signal, the band's centre line, with
+    `rms_m` its half-width over sqrt(3). The circle is Taubin's (see `circle_fit_algebraic`).
+    """
+    n = int(x.size)
+    terms, mean_x, mean_y, total, moments = _centred_moments(x, y, weight)
+    m_uu, m_vv, m_uv = moments[:3]
     angle = (0.5 * math.atan2(2 * m_uv, m_uu - m_vv)) % math.pi
     smallest = max((m_uu + m_vv) / 2 - math.hypot((m_uu - m_vv) / 2, m_uv), 0.0)
     offset = -math.sin(angle) * mean_x + math.cos(angle) * mean_y
     line = LineFit(angle, offset, math.sqrt(smallest), n)
-    solution = _taubin(m_uu, m_vv, m_uv, m_uz, m_vz, m_zz)
+    solution = _taubin(*moments)
     if solution is None:
         return line, CircleFit((math.nan, math.nan), math.inf, math.inf, n)
     a, b, radius = solution
     # squared distances from the circle, (sqrt((u - a)^2 + (v - b)^2) - radius)^2, in place
-    residual = u - a
+    residual = terms[0] - a
     residual *= residual
-    across = np.subtract(v, b, out=terms[2])
+    across = np.subtract(terms[1], b, out=terms[2])
     across *= across
     residual += across
     np.sqrt(residual, out=residual)

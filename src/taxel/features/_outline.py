@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from taxel.features._fitting import CircleFit, circle_fit_algebraic, dot, line_fit_core, mean, std
+from taxel.features._fitting import dot, line_fit_core, mean, std, taubin_circle
 
 __all__ = [
     "bends",
@@ -54,27 +54,33 @@ def _spread(residual: np.ndarray) -> float:
     return std(np.abs(residual, out=residual))
 
 
-def line_spread(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
-    """Band-aware spread about the best line, and the points' length along it."""
+def _line_spread(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
+    """Band-aware spread about the best line, and that line's direction (cos, sin)."""
     fit = line_fit_core(x, y)
     cosine, sine = math.cos(fit.angle_rad), math.sin(fit.angle_rad)
     residual = -sine * x
     residual += cosine * y
     residual -= fit.offset_m
+    return _spread(residual), cosine, sine
+
+
+def line_spread(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
+    """Band-aware spread about the best line, and the points' length along it."""
+    spread, cosine, sine = _line_spread(x, y)
     along = cosine * x
     along += sine * y
-    extent = float(np.maximum.reduce(along)) - float(np.minimum.reduce(along))
-    return _spread(residual), extent
+    return spread, float(np.maximum.reduce(along)) - float(np.minimum.reduce(along))
 
 
-def circle_spread(x: np.ndarray, y: np.ndarray) -> tuple[float, CircleFit]:
-    """Band-aware spread about the best circle, and the circle."""
-    fit = circle_fit_algebraic(x, y)
-    if not math.isfinite(fit.radius_m):
-        return math.inf, fit
-    residual = np.hypot(x - fit.center_m[0], y - fit.center_m[1])
-    residual -= fit.radius_m
-    return _spread(residual), fit
+def circle_spread(x: np.ndarray, y: np.ndarray) -> float:
+    """Band-aware spread about the best (Taubin) circle; inf for collinear points."""
+    circle = taubin_circle(x, y)
+    if circle is None:
+        return math.inf
+    centre_x, centre_y, radius = circle
+    residual = np.hypot(x - centre_x, y - centre_y)
+    residual -= radius
+    return _spread(residual)
 
 
 def tolerance(length: float) -> float:
@@ -110,18 +116,20 @@ def two_arms(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
         return math.inf, math.pi
     vx, vy = x[vertex].item(), y[vertex].item()
     # each point joins the arm whose segment it lies nearer to
+    from_x, from_y = x - vx, y - vy
     distances = []
     for ex, ey in ((ax, ay), (bx, by)):
         length_sq = max((ex - vx) ** 2 + (ey - vy) ** 2, 1e-12)
-        t = ((x - vx) * (ex - vx) + (y - vy) * (ey - vy)) / length_sq
+        t = (from_x * (ex - vx) + from_y * (ey - vy)) / length_sq
         np.minimum(np.maximum(t, 0, out=t), 1, out=t)  # np.clip(t, 0, 1), without its wrapper
-        distances.append(np.hypot(x - vx - t * (ex - vx), y - vy - t * (ey - vy)))
+        distances.append(np.hypot(from_x - t * (ex - vx), from_y - t * (ey - vy)))
     first = distances[0] <= distances[1]
     count = int(np.count_nonzero(first))
     smaller = min(count, first.size - count)
     if smaller < _MIN_ARM * x.size or smaller < 3:
         return math.inf, math.pi
-    worst = max(line_spread(x[first], y[first])[0], line_spread(x[~first], y[~first])[0])
+    other = ~first
+    worst = max(_line_spread(x[first], y[first])[0], _line_spread(x[other], y[other])[0])
     arm_a = math.atan2(ay - vy, ax - vx)
     arm_b = math.atan2(by - vy, bx - vx)
     angle = abs((arm_a - arm_b + math.pi) % (2 * math.pi) - math.pi)

@@ -220,7 +220,7 @@ def _free_outline(
         arms = two_arms(x, y)
         if not bends(arms):
             continue  # the corner score is 0 whatever the circle, and no corner is found
-        round_spread, _ = circle_spread(x, y)
+        round_spread = circle_spread(x, y)
         corner = corner_score(min(single, round_spread), arms)
         # a vertex: two straight arms, which fit better than one circle (a curved edge,
         # such as a hole cut by the array's corner, is fitted as well by a circle)
