@@ -20,6 +20,7 @@ into at lower levels are then already explained.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import cv2
@@ -208,9 +209,7 @@ def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
     return found
 
 
-def _reaches_border(
-    box: tuple[int, int, int, int], r0: int, c0: int, shape: tuple[int, int]
-) -> bool:
+def _reaches_border(box: Sequence[int], r0: int, c0: int, shape: tuple[int, int]) -> bool:
     """Whether a region touches the array's border, from its bounding box in a window.
 
     `box` is the region's (left, top, width, height) in the window whose corner is at

@@ -20,6 +20,7 @@ pressure feature is narrower than ~3.5 taxels, and bright structures under 3 tax
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -146,12 +147,13 @@ def contact_box(prepared: Prepared) -> tuple[int, int, int, int]:
     """(left, top, width, height) of the contact mask (internal; kept in ``prepared.memo``)."""
     box = prepared.memo.get("box")
     if box is None:
-        box = prepared.memo["box"] = cv2.boundingRect(prepared.mask)
+        left, top, width, height = cv2.boundingRect(prepared.mask)
+        box = prepared.memo["box"] = (left, top, width, height)
     return box
 
 
 def component_outlines(
-    region: np.ndarray, outlines: tuple[np.ndarray, ...], hierarchy: np.ndarray
+    region: np.ndarray, outlines: Sequence[np.ndarray], hierarchy: np.ndarray
 ) -> tuple[np.ndarray, ...]:
     """The outlines of one region, picked from those of a whole image (internal).
 
@@ -384,7 +386,7 @@ def prepare(
     floor = max(_RELATIVE_FLOOR * max(abs(peak), abs(level)), 1e-30)
     low = level + max(K_LOW * noise, F_LOW * contrast)
     high = level + max(K_HIGH * noise, F_HIGH * contrast)
-    common = {
+    common: dict[str, Any] = {
         "image": values, "smooth": smooth, "pitch": pitch, "baseline": level, "noise": noise,
         "contrast": contrast, "raw_noise": raw_noise, "low": low, "high": high,
         "calibrated": bool(calibrated), "peak": peak, "defects_removed": cleaned,

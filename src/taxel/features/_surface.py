@@ -69,7 +69,7 @@ def plane_core(
     spread = float(deviation[0, 0])
     uniformity = min(max(1.0 - spread / above, 0.0), 1.0) if above > 0 else 0.0
     if contours is None:
-        contours, _ = cv2.findContours(mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)
+        contours = list(cv2.findContours(mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)[0])
     if len(contours) == 1:
         points = contours[0]
     else:

@@ -32,7 +32,7 @@ _RING_RADIUS = 2.0  # [sigma]
 _RING_POINTS = 32
 # Octave bands of spatial frequency, from the Nyquist limit down: [f/2, f], [f/4, f/2], ...
 _OCTAVES = 4
-_SPECTRUM_CACHE: dict[tuple, tuple[np.ndarray, ...]] = {}
+_SPECTRUM_CACHE: dict[tuple, tuple[Any, ...]] = {}
 _RING_CACHE: dict[tuple[float, int], tuple[np.ndarray, ...]] = {}
 _SQUARES: dict[int, np.ndarray] = {}
 _THREE = np.ones((3, 3), np.uint8)
@@ -188,7 +188,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     noise = raw_noise / (2.0 * math.sqrt(math.pi) * sigma)
     margin = np.float32(max(_MAXIMUM_SIGMAS * noise, 1e-9 * prepared.contrast, 1e-30))
     # a plateau of equal values is one maximum, not many: one taxel per connected plateau
-    lowest += margin
+    np.add(lowest, margin, out=lowest)
     peaks = (smooth >= cv2.dilate(smooth, _THREE)) & (smooth > lowest)
     peaks = peaks.view(np.uint8) & mask
     points = cv2.findNonZero(peaks)
@@ -234,9 +234,9 @@ def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Textur
     image = prepared.image
     window, frequency, order, starts, empty = _spectrum_layout(image.shape, prepared.pitch)
     ripple = image - np.float32(cv2.mean(image)[0])
-    ripple *= window
+    np.multiply(ripple, window, out=ripple)
     spectrum = cv2.dft(ripple, flags=cv2.DFT_COMPLEX_OUTPUT)
-    spectrum *= spectrum  # squares of the real and imaginary parts
+    np.multiply(spectrum, spectrum, out=spectrum)  # squares of the real and imaginary parts
     power = (spectrum[..., 0] + spectrum[..., 1]).ravel()
     power[0] = 0.0
     total = float(power.sum(dtype=np.float64))
