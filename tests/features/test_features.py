@@ -3,8 +3,10 @@
 import json
 import math
 
+import cv2
 import numpy as np
 import pytest
+from scipy import ndimage
 from scipy.spatial.transform import Rotation
 from synthetic import (
     arc,
@@ -33,6 +35,7 @@ from taxel.features import (
     fit_line,
     texture_measures,
 )
+from taxel.features._image import component_outlines
 from taxel.frames import make_pose
 
 PITCH = 3.3e-2 / 128
@@ -355,3 +358,23 @@ def test_defects_narrower_than_the_cover_blur_are_removed():
     assert raw.major_axis_m > 2 * raw.minor_axis_m
     assert cleaned.major_axis_m == pytest.approx(cleaned.minor_axis_m, rel=0.1)
     assert cleaned.centroid_index == pytest.approx((20.0, 40.0), abs=0.1)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_outlines_of_one_region_in_the_order_findcontours_lists_them(seed):
+    # prepare picks one region's outlines from those of all regions instead of tracing it
+    # again; the features then see them in the order cv2.findContours(RETR_LIST) gives
+    rng = np.random.default_rng(seed)
+    for _ in range(100):
+        size = int(rng.integers(8, 64))
+        noise = ndimage.gaussian_filter(rng.random((size, size)), rng.uniform(0.6, 2.5))
+        image = (noise > rng.uniform(0.45, 0.55)).astype(np.uint8)
+        count, labels = cv2.connectedComponents(image, connectivity=8)
+        if count < 2:
+            continue
+        region = (labels == rng.integers(1, count)).astype(np.uint8)
+        outlines, hierarchy = cv2.findContours(image, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
+        found = component_outlines(region, outlines, hierarchy)
+        listed, _ = cv2.findContours(region, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)
+        assert len(found) == len(listed)
+        assert all(np.array_equal(a, b) for a, b in zip(found, listed, strict=True))

@@ -9,7 +9,7 @@ from typing import Any
 import cv2
 import numpy as np
 
-from taxel.features._image import Prepared, prepare
+from taxel.features._image import Prepared, contact_box, prepare
 
 __all__ = ["Contact", "ContactRegion", "contact_regions", "find_contact", "region_moments"]
 
@@ -125,7 +125,9 @@ def region_moments(prepared: Prepared, mask: np.ndarray) -> tuple[dict, dict]:
     if prepared.n_regions == 1 and "moments" in prepared.memo:
         return prepared.memo["moments"]
     binary = cv2.moments(mask, binaryImage=True)
-    weighted = cv2.moments((prepared.smooth - np.float32(prepared.baseline)) * mask)
+    signal = prepared.smooth - np.float32(prepared.baseline)
+    signal *= mask
+    weighted = cv2.moments(signal)
     if prepared.n_regions == 1:
         prepared.memo["moments"] = (binary, weighted)
     return binary, weighted
@@ -147,7 +149,10 @@ def _one_region(prepared: Prepared) -> Contact:
     above = (image >= np.float32(prepared.low)).view(np.uint8) & mask
     raw_count = cv2.countNonZero(above) or int(count)
     peak = cv2.minMaxLoc(image, mask)[1]
-    border = bool(mask[0].any() or mask[-1].any() or mask[:, 0].any() or mask[:, -1].any())
+    left, top, width, height = contact_box(prepared)
+    border = (
+        left == 0 or top == 0 or left + width == mask.shape[1] or top + height == mask.shape[0]
+    )
     force = None
     if prepared.calibrated:
         force = float(cv2.sumElems(image * mask)[0]) * prepared.taxel_area

@@ -11,14 +11,14 @@ import numpy as np
 
 from taxel._validation import as_finite_array, check_positive, check_range
 from taxel.features._contact import Contact, contact_regions
-from taxel.features._fitting import fit_line_and_circle
+from taxel.features._fitting import CircleFit, LineFit, fit_line_and_circle
 from taxel.features._gaps import HoleReport, SlotReport, gaps_core
 from taxel.features._holes import diameter_test, outline_contours, outline_taxels
 from taxel.features._image import prepare
 from taxel.features._shape import ContactShape, is_textured, shape_core
 from taxel.features._surface import ContactPlane, plane_core
 from taxel.features._texture import Texture, texture_core
-from taxel.frames import as_pose, transform_directions, transform_points
+from taxel.frames import as_pose
 
 __all__ = ["ContactPose", "TactileFeatures", "extract"]
 
@@ -190,11 +190,14 @@ def _locate(
     angle = shape.line.angle_rad if use_line and shape.line else contact.orientation_rad
     axis = (math.cos(angle), math.sin(angle), 0.0)
     normal = plane.normal if plane.normal is not None else (0.0, 0.0, 1.0)
+    # `pose` was checked by `as_pose`: apply it as `transform_points` and
+    # `transform_directions` do, without checking it again for each vector
+    rotation_t = pose[:3, :3].T
     return ContactPose(
         position,
-        tuple(float(v) for v in transform_points(pose, position)),  # type: ignore[arg-type]
-        tuple(float(v) for v in transform_directions(pose, axis)),  # type: ignore[arg-type]
-        tuple(float(v) for v in transform_directions(pose, normal)),  # type: ignore[arg-type]
+        tuple((np.asarray(position, np.float64) @ rotation_t + pose[:3, 3]).tolist()),
+        tuple((np.asarray(axis, np.float64) @ rotation_t).tolist()),
+        tuple((np.asarray(normal, np.float64) @ rotation_t).tolist()),
     )
 
 
@@ -291,9 +294,16 @@ def extract(
     holes, slots, explained = gaps_core(prepared, textured=textured)
     contours = list(outline_contours(prepared))
     cols, rows = outline_taxels(prepared, contours)
-    outline_fit = None
-    if cols.size >= 3:  # one line and circle through the outline, for shape and hole test
-        outline_fit = fit_line_and_circle(cols.astype(float), rows.astype(float))
+    fits: list[tuple[LineFit, CircleFit] | None] = []
+
+    def outline_fit() -> tuple[LineFit, CircleFit] | None:
+        # one line and circle through the outline, for the type and the hole test, fitted
+        # when first asked for: a band's type and a convex contact's hole test do without
+        if not fits:
+            x, y = cols.astype(float), rows.astype(float)
+            fits.append(fit_line_and_circle(x, y) if cols.size >= 3 else None)
+        return fits[0]
+
     shape = shape_core(
         prepared,
         contact,
@@ -308,9 +318,10 @@ def extract(
     plane = plane_core(prepared, depth_map, contours=contours)
     # a line crosses the outline of one convex region at most twice: no need to walk it
     convex = len(contours) == 1 and plane.fill >= _CONVEX_FILL
-    test = not convex and diameter_test(
-        prepared, cols, rows, outline_fit[1] if outline_fit else None
-    )
+    test = False
+    if not convex:
+        fit = outline_fit()
+        test = diameter_test(prepared, cols, rows, fit[1] if fit else None)
     hole_report = HoleReport(bool(holes), len(holes), tuple(holes), test)
     slot_report = SlotReport(bool(slots), len(slots), tuple(slots))
     located = _locate(contact, shape, plane, depth_map, pose_matrix)

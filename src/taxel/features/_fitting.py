@@ -10,7 +10,17 @@ import numpy as np
 
 from taxel._validation import as_finite_array
 
-__all__ = ["CircleFit", "LineFit", "dot", "fit_circle", "fit_line", "fit_line_and_circle"]
+__all__ = [
+    "CircleFit",
+    "LineFit",
+    "dot",
+    "fit_circle",
+    "fit_line",
+    "fit_line_and_circle",
+    "mean",
+    "std",
+    "taubin_circle",
+]
 
 # Gauss-Newton steps after the algebraic fit; 3 bring the geometric RMS to within 1e-6 of
 # its minimum on arcs spanning more than 60 degrees.
@@ -26,6 +36,21 @@ def dot(a: np.ndarray, b: np.ndarray) -> float:
     of waiting for a few microseconds of work; einsum's own loop never does.
     """
     return float(np.einsum("i,i->", a, b))
+
+
+def mean(a: np.ndarray) -> float:
+    """``a.mean()`` of a float64 vector, bit for bit, without its Python wrapper (internal)."""
+    return float(np.add.reduce(a)) / a.size
+
+
+def std(a: np.ndarray) -> float:
+    """``np.std(a)`` of a float64 vector, bit for bit, without its Python wrapper (internal).
+
+    The same steps as NumPy's: the mean, the squared deviations, their mean, its root.
+    """
+    deviation = a - mean(a)
+    deviation *= deviation
+    return math.sqrt(float(np.add.reduce(deviation)) / a.size)
 
 
 @dataclass(frozen=True)
@@ -81,9 +106,12 @@ def _points(points: Any, minimum: int) -> np.ndarray:
 
 def line_fit_core(x: np.ndarray, y: np.ndarray) -> LineFit:
     """Total least squares line through (x, y) (validated arrays; internal)."""
-    mean_x, mean_y = float(x.mean()), float(y.mean())
-    dx, dy = x - mean_x, y - mean_y
-    sxx, syy, sxy = dot(dx, dx), dot(dy, dy), dot(dx, dy)
+    mean_x, mean_y = mean(x), mean(y)
+    centred = np.empty((2, x.size))
+    np.subtract(x, mean_x, out=centred[0])
+    np.subtract(y, mean_y, out=centred[1])
+    # the three sums of products in one einsum (the same loop, and sums, as three `dot`s)
+    (sxx, sxy), (_, syy) = np.einsum("in,jn->ij", centred, centred).tolist()
     angle = 0.5 * math.atan2(2 * sxy, sxx - syy)
     angle %= math.pi
     # the smallest eigenvalue of the scatter matrix is the sum of squared distances
@@ -146,6 +174,47 @@ def _taubin(
     return a, b, math.sqrt(radius_sq)
 
 
+def _centred_moments(
+    x: np.ndarray, y: np.ndarray, weight: np.ndarray | None
+) -> tuple[np.ndarray, float, float, float, tuple[float, ...]]:
+    """Centred coordinates, their mean and total weight, and their moments up to 4th order.
+
+    Returns ``terms`` (rows u, v, u^2 + v^2), mean x, mean y, the total weight and the
+    weighted means (m_uu, m_vv, m_uv, m_uz, m_vz, m_zz) as plain floats.
+    """
+    n = int(x.size)
+    if weight is None:
+        total = float(n)
+        mean_x, mean_y = mean(x), mean(y)
+    else:
+        total = float(np.add.reduce(weight))
+        mean_x, mean_y = dot(weight, x) / total, dot(weight, y) / total
+    terms = np.empty((3, n))
+    u = np.subtract(x, mean_x, out=terms[0])
+    v = np.subtract(y, mean_y, out=terms[1])
+    np.multiply(u, u, out=terms[2])
+    terms[2] += v * v
+    weighted = terms if weight is None else terms * weight
+    # plain floats from here: scalar arithmetic on NumPy scalars costs several times more
+    (m_uu, m_uv, m_uz), (_, m_vv, m_vz), (_, _, m_zz) = (
+        np.einsum("in,jn->ij", weighted, terms) / total
+    ).tolist()
+    return terms, mean_x, mean_y, total, (m_uu, m_vv, m_uv, m_uz, m_vz, m_zz)
+
+
+def taubin_circle(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float] | None:
+    """Centre (x, y) and radius of the circle of `fit_line_and_circle`, without its RMS.
+
+    None where that fit gives no circle (collinear points).
+    """
+    _, mean_x, mean_y, _, moments = _centred_moments(x, y, None)
+    solution = _taubin(*moments)
+    if solution is None:
+        return None
+    a, b, radius = solution
+    return mean_x + a, mean_y + b, radius
+
+
 def fit_line_and_circle(
     x: np.ndarray, y: np.ndarray, weight: np.ndarray | None = None
 ) -> tuple[LineFit, CircleFit]:
@@ -157,29 +226,27 @@ def fit_line_and_circle(
     `rms_m` its half-width over sqrt(3). The circle is Taubin's (see `circle_fit_algebraic`).
     """
     n = int(x.size)
-    if weight is None:
-        total = float(n)
-        mean_x, mean_y = float(x.mean()), float(y.mean())
-    else:
-        total = float(weight.sum())
-        mean_x, mean_y = dot(weight, x) / total, dot(weight, y) / total
-    u, v = x - mean_x, y - mean_y
-    terms = np.stack((u, v, u * u + v * v))
-    weighted = terms if weight is None else terms * weight
-    moments = np.einsum("in,jn->ij", weighted, terms) / total
-    m_uu, m_uv, m_uz = moments[0]
-    m_vv, m_vz, m_zz = moments[1, 1], moments[1, 2], moments[2, 2]
+    terms, mean_x, mean_y, total, moments = _centred_moments(x, y, weight)
+    m_uu, m_vv, m_uv = moments[:3]
     angle = (0.5 * math.atan2(2 * m_uv, m_uu - m_vv)) % math.pi
     smallest = max((m_uu + m_vv) / 2 - math.hypot((m_uu - m_vv) / 2, m_uv), 0.0)
     offset = -math.sin(angle) * mean_x + math.cos(angle) * mean_y
     line = LineFit(angle, offset, math.sqrt(smallest), n)
-    solution = _taubin(m_uu, m_vv, m_uv, m_uz, m_vz, m_zz)
+    solution = _taubin(*moments)
     if solution is None:
         return line, CircleFit((math.nan, math.nan), math.inf, math.inf, n)
     a, b, radius = solution
-    residual = np.sqrt((u - a) ** 2 + (v - b) ** 2) - radius
-    squares = residual * residual
-    rms = math.sqrt((float(squares.sum()) if weight is None else dot(weight, squares)) / total)
+    # squared distances from the circle, (sqrt((u - a)^2 + (v - b)^2) - radius)^2, in place
+    residual = terms[0] - a
+    residual *= residual
+    across = np.subtract(terms[1], b, out=terms[2])
+    across *= across
+    residual += across
+    np.sqrt(residual, out=residual)
+    residual -= radius
+    residual *= residual
+    total_squares = float(np.add.reduce(residual)) if weight is None else dot(weight, residual)
+    rms = math.sqrt(total_squares / total)
     return line, CircleFit((mean_x + a, mean_y + b), radius, rms, n)
 
 

@@ -20,6 +20,7 @@ into at lower levels are then already explained.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import cv2
@@ -65,6 +66,8 @@ _MAX_BASINS = 24
 # into the array's edge.
 _BORDER_TAXELS = 2.0
 _GROW = np.ones((7, 7), np.uint8)
+# A basin's wall is read up to this many taxels from it.
+_REACH = 6
 
 
 @dataclass(frozen=True)
@@ -167,30 +170,38 @@ def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
         if prepared.baseline + f * prepared.contrast > prepared.low
     ] + [prepared.low]
     for level in levels:
+        # the non-contact side at this level, in one comparison (`smooth < level` is
+        # `1 - (smooth >= level)`)
         if level == prepared.low:
-            inside = prepared.mask
+            outside = 1 - prepared.mask
         else:
-            inside = (prepared.smooth >= level).view(np.uint8)
+            outside = (prepared.smooth < level).view(np.uint8)
         # two-level hierarchy: every region's outer outline is at the top, however nested
-        contours, hierarchy = cv2.findContours(1 - inside, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
+        contours, hierarchy = cv2.findContours(outside, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
         sized = []
-        for contour, links in zip(contours, hierarchy[0] if contours else (), strict=True):
-            if links[3] >= 0 or contour.shape[0] < 3:
+        parents = hierarchy[0][:, 3].tolist() if contours else []
+        for contour, parent in zip(contours, parents, strict=True):
+            points = contour.shape[0]
+            if parent >= 0 or points < 3:
                 continue
-            moments = cv2.moments(contour)
             # the outline runs through the outer taxels' centres: add half a taxel all round
-            area = moments["m00"] + 0.5 * contour.shape[0]
+            # (`contourArea` is the moments' m00, without building them all)
+            area = cv2.contourArea(contour) + 0.5 * points
             if area < smallest or area > limit:
                 continue
-            x, y = contour[:, 0, 0], contour[:, 0, 1]
-            run = int(np.count_nonzero((x == 0) | (y == 0) | (x == cols - 1) | (y == rows - 1)))
-            if run:
+            left, top, box_width, box_height = cv2.boundingRect(contour)
+            if left == 0 or top == 0 or left + box_width == cols or top + box_height == rows:
+                moments = cv2.moments(contour)
                 count = max(moments["m00"], 1e-9)
                 var_x, var_y = moments["mu20"] / count, moments["mu02"] / count
                 spread = math.hypot((var_x - var_y) / 2, moments["mu11"] / count)
                 length = math.sqrt(12.0 * ((var_x + var_y) / 2 + spread)) + 1.0
                 width = area / length
-                if length < _SLOT_ELONGATION * width or run > _SLOT_BORDER_WIDTHS * width + 2:
+                if length < _SLOT_ELONGATION * width:
+                    continue
+                # outline points on the array's border: all but those strictly inside it
+                run = points - cv2.countNonZero(cv2.inRange(contour, (1, 1), (cols - 2, rows - 2)))
+                if run > _SLOT_BORDER_WIDTHS * width + 2:
                     continue
             sized.append((area, contour))
         sized.sort(key=lambda item: -item[0])
@@ -198,16 +209,44 @@ def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
     return found
 
 
-def _reaches_border(
-    region: np.ndarray, r0: int, r1: int, c0: int, c1: int, shape: tuple[int, int]
-) -> bool:
-    """Whether a window's region touches the array's border."""
-    return bool(
-        (r0 == 0 and region[0].any())
-        or (r1 == shape[0] and region[-1].any())
-        or (c0 == 0 and region[:, 0].any())
-        or (c1 == shape[1] and region[:, -1].any())
+def _reaches_border(box: Sequence[int], r0: int, c0: int, shape: tuple[int, int]) -> bool:
+    """Whether a region touches the array's border, from its bounding box in a window.
+
+    `box` is the region's (left, top, width, height) in the window whose corner is at
+    row `r0`, column `c0` of the array (an empty region has width 0).
+    """
+    left, top, width, height = box
+    return width > 0 and (
+        r0 + top == 0
+        or c0 + left == 0
+        or r0 + top + height == shape[0]
+        or c0 + left + width == shape[1]
     )
+
+
+def _moments_of_old(
+    region: np.ndarray,
+    bounds: tuple[int, int, int, int],
+    contour: np.ndarray,
+    shape: tuple[int, int],
+) -> tuple[dict, int, int]:
+    """Moments of a window's region, taken in the gap test's original, wider window.
+
+    The region, in the window of rows r0:r1 and columns c0:c1 (`bounds`), is placed in
+    the window the gap test was written with (margin 6 taxels plus half the basin's
+    size): the moments' rounding depends on their origin, so the results stay the same
+    bit for bit. Returns the moments and the wider window's corner (row, column).
+    """
+    r0, r1, c0, c1 = bounds
+    left, top, width, height = cv2.boundingRect(contour)
+    margin = _REACH + max(width, height) // 2
+    wide_r0, wide_r1 = max(top - margin, 0), min(top + height + margin, shape[0])
+    wide_c0, wide_c1 = max(left - margin, 0), min(left + width + margin, shape[1])
+    if (wide_r0, wide_r1, wide_c0, wide_c1) != bounds:
+        wide = np.zeros((wide_r1 - wide_r0, wide_c1 - wide_c0), np.uint8)
+        wide[r0 - wide_r0 : r1 - wide_r0, c0 - wide_c0 : c1 - wide_c0] = region
+        region = wide
+    return cv2.moments(region, binaryImage=True), wide_r0, wide_c0
 
 
 def _measure(
@@ -216,9 +255,11 @@ def _measure(
     """Decide whether one basin holds a hole or a slot, and measure it."""
     shape = prepared.image.shape
     left, top, width, height = cv2.boundingRect(contour)
-    margin = 6 + max(width, height) // 2
-    r0, r1 = max(top - margin, 0), min(top + height + margin, shape[0])
-    c0, c1 = max(left - margin, 0), min(left + width + margin, shape[1])
+    # everything below is read within 6 taxels of the basin (the wall's ring): a window
+    # that wide around it holds it all (distances to the basin do not depend on the
+    # window, as long as it holds the basin)
+    r0, r1 = max(top - _REACH, 0), min(top + height + _REACH, shape[0])
+    c0, c1 = max(left - _REACH, 0), min(left + width + _REACH, shape[1])
     window = prepared.smooth[r0:r1, c0:c1]
     own = np.zeros(window.shape, np.uint8)
     cv2.drawContours(own, [contour], -1, 1, thickness=-1, offset=(-c0, -r0))
@@ -226,9 +267,9 @@ def _measure(
     # distance of every window taxel from the basin: the wall is read 2-6 taxels out,
     # past the blurred transition, and the gap grown up to 3 taxels to the half level
     away = cv2.distanceTransform(1 - own, cv2.DIST_L2, 3)
-    ring = (away > 2.0) & (away <= 6.0)
+    ring = (away > 2.0) & (away <= float(_REACH))
     wall = ring & (window >= level)
-    if not wall.any():
+    if not np.count_nonzero(wall):
         return None
     if cv2.countNonZero((ring & (window >= prepared.high)).view(np.uint8)) < _FACE * (
         cv2.countNonZero(ring.view(np.uint8))
@@ -236,29 +277,32 @@ def _measure(
         return None  # no face around it (a noisy fringe, the valleys of a texture)
     values = window[wall]
     tenth, ninetieth = (values.size - 1) // 10, (values.size - 1) * 9 // 10
-    ordered = np.partition(values, (tenth, ninetieth))
-    surround = float(ordered[ninetieth])
-    evenness = (float(ordered[tenth]) - prepared.baseline) / max(
+    values.partition((tenth, ninetieth))  # in place: `values` is a copy already
+    surround = float(values[ninetieth])
+    evenness = (float(values[tenth]) - prepared.baseline) / max(
         surround - prepared.baseline, 1e-30
     )
     half = prepared.baseline + _DIP * (surround - prepared.baseline)
     if bottom > half:
         return None  # a dimple of the pressure, not a gap in the contact
     region = ((away <= 3.0) & (window < half)).view(np.uint8)
-    if _reaches_border(region, r0, r1, c0, c1, shape) and not _reaches_border(
-        own, r0, r1, c0, c1, shape
+    box = cv2.boundingRect(region)
+    # (the filled outline's bounding box is the outline's)
+    if _reaches_border(box, r0, c0, shape) and not _reaches_border(
+        (left - c0, top - r0, width, height), r0, c0, shape
     ):
         # the face itself falls below the half level toward the array's edge (a pad
         # presses less at its rim): measure the gap where it is enclosed instead
         region = own & (window < half).view(np.uint8)
-    moments = cv2.moments(region, binaryImage=True)
+        box = cv2.boundingRect(region)
+    moments, origin_r, origin_c = _moments_of_old(region, (r0, r1, c0, c1), contour, shape)
     area = moments["m00"]
     where = (slice(r0, r1), slice(c0, c1))
     if area < _MIN_GAP_AREA:
         return None, where, region, evenness
     row_pitch, col_pitch = prepared.pitch
     pitch = math.sqrt(row_pitch * col_pitch)
-    mean_r, mean_c = moments["m01"] / area + r0, moments["m10"] / area + c0
+    mean_r, mean_c = moments["m01"] / area + origin_r, moments["m10"] / area + origin_c
     var_y = (moments["mu02"] / area + 1 / 12) * row_pitch**2
     var_x = (moments["mu20"] / area + 1 / 12) * col_pitch**2
     cov = moments["mu11"] / area * row_pitch * col_pitch
@@ -271,10 +315,10 @@ def _measure(
         float((mean_r - (rows - 1) / 2) * row_pitch),
     )
     gap_area = area * row_pitch * col_pitch
-    inradius = float(cv2.distanceTransform(region, cv2.DIST_L2, 3).max())
-    border = _reaches_border(region, r0, r1, c0, c1, shape)
+    inradius = cv2.minMaxLoc(cv2.distanceTransform(region, cv2.DIST_L2, 3))[1]
+    border = _reaches_border(box, r0, c0, shape)
     edge = max(_BORDER_TAXELS, prepared.cover_depth / pitch)
-    left, top, width, height = cv2.boundingRect(region)
+    left, top, width, height = box
     clearance = min(c0 + left, r0 + top, cols - c0 - left - width, rows - r0 - top - height)
     if not border and clearance >= edge:
         round_enough = math.sqrt(minor / major) >= _HOLE_AXIS_RATIO
@@ -324,12 +368,14 @@ def gaps_core(
     evenness: list[float] = []
     if not prepared.present:
         return holes, slots, explained
+    marked = False  # whether `explained` holds a gap yet
     for contour, level in _basins(prepared):
-        moments = cv2.moments(contour)
-        if moments["m00"] > 0:  # a basin already explained (at a higher level) is done
-            col, row = moments["m10"] / moments["m00"], moments["m01"] / moments["m00"]
-            if explained[int(round(row)), int(round(col))]:
-                continue
+        if marked:  # a basin already explained (at a higher level) is done
+            moments = cv2.moments(contour)
+            if moments["m00"] > 0:
+                col, row = moments["m10"] / moments["m00"], moments["m01"] / moments["m00"]
+                if explained[int(round(row)), int(round(col))]:
+                    continue
         measured = _measure(prepared, contour, level)
         if measured is None or measured[0] is None:
             continue
@@ -340,6 +386,7 @@ def gaps_core(
         elif not textured:
             slots.append(found)
         explained[where] |= cv2.dilate(region, _GROW)
+        marked = True
     if textured and not _perforated(holes, evenness):
         holes = []
     return holes, slots, explained

@@ -26,6 +26,8 @@ __all__ = [
 # Diameters sampled by the seed's hole test and their extent beyond the fitted radius.
 _DIAMETERS = 16
 _DIAMETER_REACH = 2.0
+_COSINES = np.cos(np.arange(_DIAMETERS) * (math.pi / _DIAMETERS))[:, None]
+_SINES = np.sin(np.arange(_DIAMETERS) * (math.pi / _DIAMETERS))[:, None]
 
 
 def diameter_test(
@@ -52,16 +54,19 @@ def diameter_test(
     centre_c, centre_r = fit.center_m
     # one taxel per step: the contact's walls are at least 2 taxels thick after smoothing
     steps = np.arange(-_DIAMETER_REACH * fit.radius_m, _DIAMETER_REACH * fit.radius_m, 1.0)
-    angles = np.arange(_DIAMETERS) * (math.pi / _DIAMETERS)
-    cols_at = np.rint(centre_c + np.cos(angles)[:, None] * steps).astype(int)
-    rows_at = np.rint(centre_r + np.sin(angles)[:, None] * steps).astype(int)
-    inside = (rows_at >= 0) & (rows_at < shape[0]) & (cols_at >= 0) & (cols_at < shape[1])
-    touched = np.zeros(rows_at.shape, bool)
-    touched[inside] = prepared.mask[rows_at[inside], cols_at[inside]] > 0
+    cols_at = np.rint(centre_c + _COSINES * steps).astype(int)
+    rows_at = np.rint(centre_r + _SINES * steps).astype(int)
+    # samples off the array read the zero row and column appended to the mask (index -1
+    # wraps to them)
+    np.minimum(np.maximum(cols_at, -1, out=cols_at), shape[1], out=cols_at)
+    np.minimum(np.maximum(rows_at, -1, out=rows_at), shape[0], out=rows_at)
+    padded = cv2.copyMakeBorder(prepared.mask, 0, 1, 0, 1, cv2.BORDER_CONSTANT, value=0)
+    touched = padded[rows_at, cols_at] != 0
+    crossed = touched[:, 1:] != touched[:, :-1]
     middle = steps.size // 2
-    before = np.count_nonzero(np.diff(touched[:, : middle + 1], axis=1), axis=1)
-    after = np.count_nonzero(np.diff(touched[:, middle:], axis=1), axis=1)
-    return bool(np.any((before == 2) & (after == 2) & ~touched[:, middle]))
+    before = np.add.reduce(crossed[:, :middle], axis=1)
+    after = np.add.reduce(crossed[:, middle:], axis=1)
+    return bool(np.count_nonzero((before == 2) & (after == 2) & ~touched[:, middle]))
 
 
 def outline_contours(prepared: Prepared) -> tuple[np.ndarray, ...]:

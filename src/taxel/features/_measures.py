@@ -9,7 +9,7 @@ import numpy as np
 
 from taxel.features._contact import Contact, region_moments
 from taxel.features._fitting import CircleFit, LineFit, fit_line_and_circle
-from taxel.features._image import Prepared
+from taxel.features._image import Prepared, contact_box
 from taxel.features._outline import lobes
 
 __all__ = [
@@ -35,19 +35,22 @@ def _main_region(prepared: Prepared, contact: Contact) -> np.ndarray:
     return (prepared.labels == int(np.argmax(counts))).view(np.uint8)
 
 
-def half_region(prepared: Prepared, main: np.ndarray) -> tuple[np.ndarray, float, bool]:
-    """The main region above half its peak, its major axis [taxels], and if it is flat-topped.
+def half_region(prepared: Prepared, main: np.ndarray) -> tuple[np.ndarray, float, bool, dict]:
+    """The main region above half its peak: mask, major axis [taxels], flat top, moments.
 
     The region is taken on the unsmoothed image at half its own peak, so that the
     smoothing does not widen it; flatness is judged on the smoothed image, against noise.
+    The moments are the region's binary ones, as `cv2.moments` gives them.
     """
     peak = cv2.minMaxLoc(prepared.image, main)[1]
     region = (prepared.image >= 0.5 * (prepared.baseline + peak)).view(np.uint8) & main
-    span = cv2.minMaxLoc(prepared.smooth, main)[1] - prepared.baseline
+    # with one region, the smoothed image's peak is the contact's
+    top = prepared.peak if main is prepared.mask else cv2.minMaxLoc(prepared.smooth, main)[1]
+    span = top - prepared.baseline
     moments = cv2.moments(region, binaryImage=True)
     count = moments["m00"]
     if count == 0:
-        return region, 0.0, False
+        return region, 0.0, False, moments
     half_area = cv2.countNonZero(
         (prepared.smooth >= prepared.baseline + 0.5 * span).view(np.uint8) & main
     )
@@ -57,17 +60,19 @@ def half_region(prepared: Prepared, main: np.ndarray) -> tuple[np.ndarray, float
     var_y, var_x = moments["mu02"] / count + 1 / 12, moments["mu20"] / count + 1 / 12
     root = math.hypot((var_x - var_y) / 2, moments["mu11"] / count)
     flat = top_area >= _FLAT_TOP * max(half_area, 1)
-    return region, 4.0 * math.sqrt((var_x + var_y) / 2 + root), flat
+    return region, 4.0 * math.sqrt((var_x + var_y) / 2 + root), flat, moments
 
 
 def band_fits(prepared: Prepared, main: np.ndarray) -> tuple[LineFit, CircleFit, float]:
     """Weighted centre line and circle of a band (taxel units), and its length [taxels]."""
-    rows, cols = np.nonzero(main)
-    weight = np.maximum(prepared.smooth[rows, cols] - np.float32(prepared.baseline), 1e-12)
-    x, y = cols.astype(float), rows.astype(float)
+    # the band's taxels in row-major order, as np.nonzero gives them
+    x, y = cv2.findNonZero(main).reshape(-1, 2).T.astype(float, order="C")
+    weight = prepared.smooth[main.view(bool)] - np.float32(prepared.baseline)
+    np.maximum(weight, 1e-12, out=weight)
     line, circle = fit_line_and_circle(x, y, weight.astype(float))
-    along = math.cos(line.angle_rad) * x + math.sin(line.angle_rad) * y
-    return line, circle, float(along.max() - along.min()) + 1.0
+    along = math.cos(line.angle_rad) * x
+    along += math.sin(line.angle_rad) * y
+    return line, circle, float(np.maximum.reduce(along) - np.minimum.reduce(along)) + 1.0
 
 
 def to_metres_line(fit: LineFit, prepared: Prepared) -> LineFit:
@@ -96,7 +101,9 @@ def region_measures(
 ) -> tuple[np.ndarray, float, float, float]:
     """Main region mask, its thickness and area [taxels], and its concentration."""
     main = _main_region(prepared, contact)
-    left, top, width, height = cv2.boundingRect(main)
+    left, top, width, height = (
+        contact_box(prepared) if main is prepared.mask else cv2.boundingRect(main)
+    )
     box = main[max(top - 1, 0) : top + height + 1, max(left - 1, 0) : left + width + 1]
     inscribed = cv2.minMaxLoc(cv2.distanceTransform(box, cv2.DIST_L2, 3))[1]
     thickness = 2.0 * float(inscribed) + 1.0  # [taxels]; +1: taxel centres, not edges
@@ -107,11 +114,15 @@ def region_measures(
     return main, thickness, float(binary["m00"]), float(concentration)
 
 
-def three_lobes(prepared: Prepared, half: np.ndarray) -> float:
-    """3rd harmonic of the outline of the main region above half its peak."""
+def three_lobes(prepared: Prepared, half: np.ndarray, moments: dict | None = None) -> float:
+    """3rd harmonic of the outline of the main region above half its peak.
+
+    `moments`: the region's binary moments, if already computed (see `half_region`).
+    """
     outlines, _ = cv2.findContours(half, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_NONE)
     if not outlines:
         return 0.0
-    moments = cv2.moments(half, binaryImage=True)
+    if moments is None:
+        moments = cv2.moments(half, binaryImage=True)
     centre = (moments["m10"] / moments["m00"], moments["m01"] / moments["m00"])
     return lobes(max(outlines, key=len), centre, 3)

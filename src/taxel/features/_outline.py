@@ -9,9 +9,10 @@ import math
 
 import numpy as np
 
-from taxel.features._fitting import CircleFit, circle_fit_algebraic, dot, line_fit_core
+from taxel.features._fitting import dot, line_fit_core, mean, std, taubin_circle
 
 __all__ = [
+    "bends",
     "circle_spread",
     "corner_score",
     "free_chains",
@@ -32,8 +33,12 @@ _SPREAD_RELATIVE = 0.015
 # the chord between the arms' far ends (less is a straight line at this resolution).
 _MIN_ARM = 0.2
 _MIN_VERTEX_OFFSET = 2.0
+# The corner score ramps up as the arms turn from 15 to 35 degrees off a straight line.
+_IN_LINE = math.radians(15.0)
+_BENT = math.radians(35.0)
 # Free outline pieces shorter than this many taxels are ignored (blur-rounded corners).
 _MIN_CHAIN = 6
+_ZERO = np.zeros(1, np.int8)
 
 
 def ramp(value: float, low: float, high: float) -> float:
@@ -42,25 +47,40 @@ def ramp(value: float, low: float, high: float) -> float:
 
 
 def _spread(residual: np.ndarray) -> float:
-    """Spread of |residual|: ~0 for one curve or two parallel/concentric ones."""
-    return float(np.std(np.abs(residual)))
+    """Spread of |residual|: ~0 for one curve or two parallel/concentric ones.
+
+    `residual` (float64, owned by the caller) is overwritten.
+    """
+    return std(np.abs(residual, out=residual))
+
+
+def _line_spread(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
+    """Band-aware spread about the best line, and that line's direction (cos, sin)."""
+    fit = line_fit_core(x, y)
+    cosine, sine = math.cos(fit.angle_rad), math.sin(fit.angle_rad)
+    residual = -sine * x
+    residual += cosine * y
+    residual -= fit.offset_m
+    return _spread(residual), cosine, sine
 
 
 def line_spread(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
     """Band-aware spread about the best line, and the points' length along it."""
-    fit = line_fit_core(x, y)
-    cosine, sine = math.cos(fit.angle_rad), math.sin(fit.angle_rad)
-    residual = -sine * x + cosine * y - fit.offset_m
-    return _spread(residual), float(np.ptp(cosine * x + sine * y))
+    spread, cosine, sine = _line_spread(x, y)
+    along = cosine * x
+    along += sine * y
+    return spread, float(np.maximum.reduce(along)) - float(np.minimum.reduce(along))
 
 
-def circle_spread(x: np.ndarray, y: np.ndarray) -> tuple[float, CircleFit]:
-    """Band-aware spread about the best circle, and the circle."""
-    fit = circle_fit_algebraic(x, y)
-    if not math.isfinite(fit.radius_m):
-        return math.inf, fit
-    residual = np.hypot(x - fit.center_m[0], y - fit.center_m[1]) - fit.radius_m
-    return _spread(residual), fit
+def circle_spread(x: np.ndarray, y: np.ndarray) -> float:
+    """Band-aware spread about the best (Taubin) circle; inf for collinear points."""
+    circle = taubin_circle(x, y)
+    if circle is None:
+        return math.inf
+    centre_x, centre_y, radius = circle
+    residual = np.hypot(x - centre_x, y - centre_y)
+    residual -= radius
+    return _spread(residual)
 
 
 def tolerance(length: float) -> float:
@@ -82,28 +102,34 @@ def two_arms(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
     The arms' far ends are the point farthest from the centroid and the point farthest
     from that one; the vertex is the point farthest from the chord between them.
     """
-    far_a = int(np.argmax((x - x.mean()) ** 2 + (y - y.mean()) ** 2))
-    far_b = int(np.argmax((x - x[far_a]) ** 2 + (y - y[far_a]) ** 2))
-    ax, ay, bx, by = x[far_a], y[far_a], x[far_b], y[far_b]
+    # plain floats for the scalar arithmetic (NumPy scalars cost several times more)
+    far_a = int(((x - mean(x)) ** 2 + (y - mean(y)) ** 2).argmax())
+    ax, ay = x[far_a].item(), y[far_a].item()
+    far_b = int(((x - ax) ** 2 + (y - ay) ** 2).argmax())
+    bx, by = x[far_b].item(), y[far_b].item()
     chord = math.hypot(bx - ax, by - ay)
     if chord == 0:
         return math.inf, math.pi
     off = np.abs((bx - ax) * (ay - y) - (ax - x) * (by - ay)) / chord
-    vertex = int(np.argmax(off))
+    vertex = int(off.argmax())
     if off[vertex] < _MIN_VERTEX_OFFSET:
         return math.inf, math.pi
-    vx, vy = x[vertex], y[vertex]
+    vx, vy = x[vertex].item(), y[vertex].item()
     # each point joins the arm whose segment it lies nearer to
+    from_x, from_y = x - vx, y - vy
     distances = []
     for ex, ey in ((ax, ay), (bx, by)):
         length_sq = max((ex - vx) ** 2 + (ey - vy) ** 2, 1e-12)
-        t = np.clip(((x - vx) * (ex - vx) + (y - vy) * (ey - vy)) / length_sq, 0, 1)
-        distances.append(np.hypot(x - vx - t * (ex - vx), y - vy - t * (ey - vy)))
+        t = (from_x * (ex - vx) + from_y * (ey - vy)) / length_sq
+        np.minimum(np.maximum(t, 0, out=t), 1, out=t)  # np.clip(t, 0, 1), without its wrapper
+        distances.append(np.hypot(from_x - t * (ex - vx), from_y - t * (ey - vy)))
     first = distances[0] <= distances[1]
-    smaller = min(int(first.sum()), int((~first).sum()))
+    count = int(np.count_nonzero(first))
+    smaller = min(count, first.size - count)
     if smaller < _MIN_ARM * x.size or smaller < 3:
         return math.inf, math.pi
-    worst = max(line_spread(x[first], y[first])[0], line_spread(x[~first], y[~first])[0])
+    other = ~first
+    worst = max(_line_spread(x[first], y[first])[0], _line_spread(x[other], y[other])[0])
     arm_a = math.atan2(ay - vy, ax - vx)
     arm_b = math.atan2(by - vy, bx - vx)
     angle = abs((arm_a - arm_b + math.pi) % (2 * math.pi) - math.pi)
@@ -116,7 +142,13 @@ def corner_score(best_single: float, arms: tuple[float, float]) -> float:
     if not math.isfinite(spread):
         return 0.0
     ratio = best_single / max(spread, 0.1)
-    return ramp(ratio, 1.5, 3.0) * ramp(math.pi - angle, math.radians(15), math.radians(35))
+    return ramp(ratio, 1.5, 3.0) * ramp(math.pi - angle, _IN_LINE, _BENT)
+
+
+def bends(arms: tuple[float, float]) -> bool:
+    """Whether two arms (from `two_arms`) can score as a corner at all (see `corner_score`)."""
+    spread, angle = arms
+    return math.isfinite(spread) and math.pi - angle > _IN_LINE
 
 
 def free_chains(
@@ -134,23 +166,29 @@ def free_chains(
     finite face or tip, not an edge crossing the array.
     """
     rows, cols = shape
-    low, high_x, high_y = margin, cols - 1 - margin, rows - 1 - margin
+    # the taxels where an outline is free: inside the margin, off the gaps' walls
+    allowed = np.zeros(shape, np.uint8)
+    inner = (slice(margin, rows - margin), slice(margin, cols - margin))
+    allowed[inner] = explained[inner] == 0
     chains = []
     for contour in contours:
-        if contour.shape[0] < _MIN_CHAIN:
+        count = contour.shape[0]
+        if count < _MIN_CHAIN:
             continue
-        x, y = contour[:, 0, 0], contour[:, 0, 1]
-        free = (x >= low) & (x <= high_x) & (y >= low) & (y <= high_y) & (explained[y, x] == 0)
-        if free.all() or not free.any():
+        points = contour.reshape(count, 2)
+        free = allowed[points[:, 1], points[:, 0]]
+        if not 0 < np.count_nonzero(free) < count:
             continue
-        start = int(np.argmin(free))  # begin on a taxel that is not free
-        free, x, y = np.roll(free, -start), np.roll(x, -start), np.roll(y, -start)
-        steps = np.diff(np.concatenate(([0], free.view(np.int8), [0])))
-        for begin, end in zip(
-            np.flatnonzero(steps == 1), np.flatnonzero(steps == -1), strict=True
-        ):
+        # start on a taxel that is not free, so that no free piece wraps around the end
+        start = int(free.argmin())
+        free = np.concatenate((free[start:], free[:start], _ZERO), dtype=np.int8)
+        steps = free[1:] - free[:-1]  # +1 where a free piece begins, -1 after it ends
+        begins, ends = np.flatnonzero(steps == 1), np.flatnonzero(steps == -1)
+        # (x, y) as two contiguous float rows, from the start taxel on
+        xy = np.concatenate((points[start:], points[:start])).T.astype(float, order="C")
+        for begin, end in zip(begins.tolist(), ends.tolist(), strict=True):
             if end - begin >= _MIN_CHAIN:
-                chains.append((x[begin:end].astype(float), y[begin:end].astype(float)))
+                chains.append((xy[0, begin + 1 : end + 1], xy[1, begin + 1 : end + 1]))
     return chains
 
 

@@ -47,6 +47,7 @@ mechanics) and its depth.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -67,6 +68,7 @@ from taxel.features._measures import (
     to_metres_line,
 )
 from taxel.features._outline import (
+    bends,
     circle_spread,
     corner_score,
     free_chains,
@@ -81,6 +83,7 @@ from taxel.features._texture import high_points
 __all__ = ["CONTACT_TYPES", "ContactShape", "classify_contact", "is_textured", "shape_core"]
 
 CONTACT_TYPES = ("none", "point", "line", "arc", "surface", "corner")
+_OutlineFit = tuple[LineFit, CircleFit]
 
 # Several contacts: a region counts when it holds >= 5 % of the contact area; three such
 # regions is a texture or a multi-point grip, not one shape.
@@ -215,7 +218,9 @@ def _free_outline(
             continue
         straight = False
         arms = two_arms(x, y)
-        round_spread, _ = circle_spread(x, y)
+        if not bends(arms):
+            continue  # the corner score is 0 whatever the circle, and no corner is found
+        round_spread = circle_spread(x, y)
         corner = corner_score(min(single, round_spread), arms)
         # a vertex: two straight arms, which fit better than one circle (a curved edge,
         # such as a hole cut by the array's corner, is fitted as well by a circle)
@@ -237,12 +242,13 @@ def shape_core(
     high_point_count: int,
     point_size: float = _POINT_SIZE,
     contours: list[np.ndarray] | None = None,
-    outline_fit: tuple[LineFit, CircleFit] | None = None,
+    outline_fit: _OutlineFit | Callable[[], _OutlineFit | None] | None = None,
 ) -> ContactShape:
     """Classify a prepared image (internal core of `classify_contact`).
 
     `contours`: the contact's outlines (every taxel), if already found; `outline_fit`:
-    the line and circle fitted to them in taxel units, if already fitted. Only the
+    the line and circle fitted to them in taxel units, or a function that fits them when
+    first called (a band's type does without). Only the
     measures a rule needs are computed; the others are reported as 0.
     """
     pitch = prepared.mean_pitch
@@ -261,11 +267,13 @@ def shape_core(
 
     def result(kind: str, confidence: float, corner: float, rule: str) -> ContactShape:
         fitted_line, fitted_circle = line, circle
-        if fitted_line is None and outline_fit is not None:
-            fitted_line, fitted_circle = outline_fit
-        elif fitted_line is None and outline:  # the outline's own line and circle
-            points = np.concatenate(outline).reshape(-1, 2).astype(float)
-            fitted_line, fitted_circle = fit_line_and_circle(points[:, 0], points[:, 1])
+        if fitted_line is None:
+            fit = outline_fit() if callable(outline_fit) else outline_fit
+            if fit is not None:
+                fitted_line, fitted_circle = fit
+            elif outline:  # the outline's own line and circle
+                points = np.concatenate(outline).reshape(-1, 2).astype(float)
+                fitted_line, fitted_circle = fit_line_and_circle(points[:, 0], points[:, 1])
         if fitted_line is not None:
             fitted_line = to_metres_line(fitted_line, prepared)
             fitted_circle = to_metres_circle(fitted_circle, prepared)
@@ -294,7 +302,7 @@ def shape_core(
     region = contact.regions[0]
     compact = region.minor_axis_m >= _COMPACT_RATIO * region.major_axis_m
     if compact and not region.touches_border:
-        half, size, flat = half_region(prepared, main)
+        half, size, flat, moments = half_region(prepared, main)
         smallest = max(point_size, _POINT_PITCHES * pitch)
         if flat:
             limit = smallest + prepared.blur + 0.5 * pitch
@@ -302,7 +310,7 @@ def shape_core(
             limit = math.hypot(smallest, prepared.blur) + 0.5 * pitch
         if size * pitch <= limit:
             return result("point", ramp(limit / (size * pitch), 1.0, 1.3), 0.0, "small contact")
-        three = three_lobes(prepared, half) if size >= _LOBES_TAXELS else 0.0
+        three = three_lobes(prepared, half, moments) if size >= _LOBES_TAXELS else 0.0
         corner = ramp(three, 0.5 * _LOBES, 1.5 * _LOBES)
         if three >= _LOBES:
             return result("corner", corner, corner, "three-lobed compact contact (vertex)")

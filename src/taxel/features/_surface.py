@@ -69,8 +69,11 @@ def plane_core(
     spread = float(deviation[0, 0])
     uniformity = min(max(1.0 - spread / above, 0.0), 1.0) if above > 0 else 0.0
     if contours is None:
-        contours, _ = cv2.findContours(mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)
-    points = np.concatenate(contours) if contours else np.zeros((0, 1, 2), np.int32)
+        contours = list(cv2.findContours(mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)[0])
+    if len(contours) == 1:
+        points = contours[0]
+    else:
+        points = np.concatenate(contours) if contours else np.zeros((0, 1, 2), np.int32)
     hull = cv2.convexHull(points) if points.shape[0] >= 3 else None
     hull_area = float(cv2.contourArea(hull)) if hull is not None else 0.0
     perimeter = cv2.arcLength(hull, True) if hull is not None else 0.0

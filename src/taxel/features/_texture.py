@@ -11,7 +11,7 @@ import numpy as np
 
 from taxel._validation import check_range
 from taxel.features._fitting import dot
-from taxel.features._image import Prepared, noise_from_residual, prepare
+from taxel.features._image import Prepared, contact_box, noise_from_residual, prepare
 
 __all__ = ["Texture", "high_points", "texture_core", "texture_measures"]
 
@@ -32,7 +32,9 @@ _RING_RADIUS = 2.0  # [sigma]
 _RING_POINTS = 32
 # Octave bands of spatial frequency, from the Nyquist limit down: [f/2, f], [f/4, f/2], ...
 _OCTAVES = 4
-_SPECTRUM_CACHE: dict[tuple, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = {}
+_SPECTRUM_CACHE: dict[tuple, tuple[Any, ...]] = {}
+_RING_CACHE: dict[tuple[float, int], tuple[np.ndarray, ...]] = {}
+_SQUARES: dict[int, np.ndarray] = {}
 _THREE = np.ones((3, 3), np.uint8)
 
 
@@ -72,13 +74,13 @@ class Texture:
     roughness: float
 
 
-def _spectrum_layout(
-    shape: tuple[int, int], pitch: tuple[float, float]
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Hann window, frequency [cycles/m] per bin, bins sorted by octave band, band starts.
+def _spectrum_layout(shape: tuple[int, int], pitch: tuple[float, float]) -> tuple:
+    """Window, frequencies and octave bands of a spectrum (cached per shape and pitch).
 
-    Bins are numbered as the flattened (rows, cols) spectrum; octave 0 is the finest, and
-    the mean and the frequencies below the last octave come last (unused).
+    Returns the Hann window, the frequency [cycles/m] per bin, the bins sorted by octave
+    band, the bands' starts in that order, and which bands hold no bin (None when all hold
+    some). Bins are numbered as the flattened (rows, cols) spectrum; octave 0 is the
+    finest, and the mean and the frequencies below the last octave come last (unused).
     """
     key = (shape, pitch)
     layout = _SPECTRUM_CACHE.get(key)
@@ -94,23 +96,65 @@ def _spectrum_layout(
         band[0] = _OCTAVES  # the mean
         order = np.argsort(band, kind="stable")
         starts = np.searchsorted(band[order], np.arange(_OCTAVES + 1))
-        layout = (window, frequency.astype(np.float32), order, starts)
+        empty = starts[1:] == starts[:-1]  # bands without bins (tiny images)
+        layout = (
+            window,
+            frequency.astype(np.float32),
+            order,
+            starts,
+            empty if empty.any() else None,
+        )
         _SPECTRUM_CACHE[key] = layout
     return layout
 
 
-def _offsets(radius: float, step: int) -> tuple[np.ndarray, np.ndarray]:
-    """Row and column offsets of the ring at `radius`, then of the curvatures' neighbours.
+def _offsets(radius: float, step: int) -> tuple[np.ndarray, ...]:
+    """Row and column offsets of the ring at `radius`, and of the curvatures' neighbours.
 
     The ring has `_RING_POINTS` points; the eight neighbours lie `step` away (E, W, S, N,
-    SE, SW, NE, NW).
+    SE, SW, NE, NW). Each is a (1, n) row, cached by (radius, step).
     """
-    angles = np.arange(_RING_POINTS) * (2 * math.pi / _RING_POINTS)
-    ring_rows = np.rint(radius * np.sin(angles)).astype(np.intp)
-    ring_cols = np.rint(radius * np.cos(angles)).astype(np.intp)
-    near_rows = np.array([0, 0, step, -step, step, step, -step, -step])
-    near_cols = np.array([step, -step, 0, 0, step, -step, step, -step])
-    return np.concatenate((ring_rows, near_rows)), np.concatenate((ring_cols, near_cols))
+    key = (radius, step)
+    offsets = _RING_CACHE.get(key)
+    if offsets is None:
+        angles = np.arange(_RING_POINTS) * (2 * math.pi / _RING_POINTS)
+        offsets = (
+            np.rint(radius * np.sin(angles)).astype(np.intp)[None, :],
+            np.rint(radius * np.cos(angles)).astype(np.intp)[None, :],
+            np.array([[0, 0, step, -step, step, step, -step, -step]], np.intp),
+            np.array([[step, -step, 0, 0, step, -step, step, -step]], np.intp),
+        )
+        _RING_CACHE[key] = offsets
+    return offsets
+
+
+def _square(size: int) -> np.ndarray:
+    """A size x size square structuring element (cached)."""
+    kernel = _SQUARES.get(size)
+    if kernel is None:
+        kernel = _SQUARES[size] = np.ones((size, size), np.uint8)
+    return kernel
+
+
+def _read(image: np.ndarray, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+    """`image` at (rows, cols), each clipped to the image (in place) as a replicated border."""
+    np.maximum(rows, 0, out=rows)
+    np.minimum(rows, image.shape[0] - 1, out=rows)
+    np.maximum(cols, 0, out=cols)
+    np.minimum(cols, image.shape[1] - 1, out=cols)
+    return image[rows, cols]
+
+
+def _first_of_each(points: np.ndarray, labels: np.ndarray) -> np.ndarray:
+    """The first of the points in each labelled plateau, in the order of the labels.
+
+    What ``points[np.unique(labels at points, return_index=True)[1]]`` gives, without
+    np.unique's sorting machinery (the points are few).
+    """
+    first: dict[int, int] = {}
+    for index, label in enumerate(labels[points[:, 1], points[:, 0]].tolist()):
+        first.setdefault(label, index)
+    return points[[first[label] for label in sorted(first)]]
 
 
 def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[int, float]:
@@ -128,13 +172,13 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     local_sigma = sigma
     radius = _RING_RADIUS * local_sigma
     grow = reach // 2 + math.ceil(radius) + 2
-    left, top, width, height = cv2.boundingRect(prepared.mask)
+    left, top, width, height = contact_box(prepared)
     rows, cols = prepared.image.shape
     r0, r1 = max(top - grow, 0), min(top + height + grow, rows)
     c0, c1 = max(left - grow, 0), min(left + width + grow, cols)
     image, mask = prepared.image[r0:r1, c0:c1], prepared.mask[r0:r1, c0:c1]
     smooth = cv2.GaussianBlur(image, (reach, reach), sigma, borderType=cv2.BORDER_REFLECT)
-    lowest = cv2.erode(smooth, np.ones((2 * math.ceil(radius) + 1,) * 2, np.uint8))
+    lowest = cv2.erode(smooth, _square(2 * math.ceil(radius) + 1))
     raw_noise = prepared.raw_noise
     if prepared.residual is not None:
         step = prepared.residual_step
@@ -144,31 +188,35 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     noise = raw_noise / (2.0 * math.sqrt(math.pi) * sigma)
     margin = np.float32(max(_MAXIMUM_SIGMAS * noise, 1e-9 * prepared.contrast, 1e-30))
     # a plateau of equal values is one maximum, not many: one taxel per connected plateau
-    peaks = (smooth >= cv2.dilate(smooth, _THREE)) & (smooth > lowest + margin)
+    np.add(lowest, margin, out=lowest)
+    peaks = (smooth >= cv2.dilate(smooth, _THREE)) & (smooth > lowest)
     peaks = peaks.view(np.uint8) & mask
     points = cv2.findNonZero(peaks)
     if points is None:
         return 0, 0.0
     points = points.reshape(-1, 2)
     if points.shape[0] > 1:
-        labels = cv2.connectedComponents(peaks)[1]
-        points = points[np.unique(labels[points[:, 1], points[:, 0]], return_index=True)[1]]
-    step = max(int(round(local_sigma)), 1)
-    row_offsets, col_offsets = _offsets(radius, step)
-    rows = np.clip(points[:, 1:2] + row_offsets, 0, smooth.shape[0] - 1)
-    cols = np.clip(points[:, 0:1] + col_offsets, 0, smooth.shape[1] - 1)
-    around = smooth[rows, cols]
-    heights = smooth[points[:, 1], points[:, 0]]
-    near = around[:, _RING_POINTS:] - heights[:, None]  # E, W, S, N, SE, SW, NE, NW
-    high = heights > around[:, :_RING_POINTS].max(axis=1) + margin
-    # principal curvatures by central differences one sigma each way
+        points = _first_of_each(points, cv2.connectedComponents(peaks)[1])
+    ring_rows, ring_cols, near_rows, near_cols = _offsets(radius, max(int(round(local_sigma)), 1))
+    point_rows, point_cols = points[:, 1:2], points[:, 0:1]
+    heights = smooth[point_rows[:, 0], point_cols[:, 0]]
+    ring = _read(smooth, point_rows + ring_rows, point_cols + ring_cols)
+    high = heights > np.maximum.reduce(ring, axis=1) + margin
+    if not np.count_nonzero(high):
+        return 0, 0.0
+    # principal curvatures by central differences one sigma each way, on the points that
+    # stand above their ring
+    heights = heights[high]
+    near = _read(smooth, point_rows[high] + near_rows, point_cols[high] + near_cols)
+    near -= heights[:, None]  # E, W, S, N, SE, SW, NE, NW
     fxx, fyy = near[:, 0] + near[:, 1], near[:, 2] + near[:, 3]
     fxy = 0.25 * (near[:, 4] - near[:, 5] - near[:, 6] + near[:, 7])
     half_trace, root = 0.5 * (fxx + fyy), np.sqrt(0.25 * (fxx - fyy) ** 2 + fxy**2)
-    high &= half_trace + root <= _ISOTROPY * (half_trace - root)  # weak vs strong, both < 0
-    if not high.any():
+    peaked = half_trace + root <= _ISOTROPY * (half_trace - root)  # weak vs strong, both < 0
+    count = int(np.count_nonzero(peaked))
+    if not count:
         return 0, 0.0
-    return int(high.sum()), float(heights[high].mean()) - prepared.baseline
+    return count, float(heights[peaked].mean()) - prepared.baseline
 
 
 def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Texture:
@@ -184,16 +232,19 @@ def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Textur
     # ripple: the whole image minus its mean, Hann-windowed (the seed measures texture over
     # the entire image)
     image = prepared.image
-    window, frequency, order, starts = _spectrum_layout(image.shape, prepared.pitch)
-    ripple = (image - np.float32(cv2.mean(image)[0])) * window
+    window, frequency, order, starts, empty = _spectrum_layout(image.shape, prepared.pitch)
+    ripple = image - np.float32(cv2.mean(image)[0])
+    np.multiply(ripple, window, out=ripple)
     spectrum = cv2.dft(ripple, flags=cv2.DFT_COMPLEX_OUTPUT)
-    power = (spectrum[..., 0] ** 2 + spectrum[..., 1] ** 2).ravel()
+    np.multiply(spectrum, spectrum, out=spectrum)  # squares of the real and imaginary parts
+    power = (spectrum[..., 0] + spectrum[..., 1]).ravel()
     power[0] = 0.0
     total = float(power.sum(dtype=np.float64))
     if total <= 0:
         return Texture(n_maxima, mean_height, density, None, None, (0.0,) * _OCTAVES, roughness)
     sums = np.add.reduceat(power[order].astype(np.float64), starts)[:_OCTAVES]
-    sums[starts[1:] == starts[:-1]] = 0.0  # an empty band (tiny images) holds nothing
+    if empty is not None:
+        sums[empty] = 0.0  # an empty band holds nothing
     bands = sums / total
     strongest = float(frequency[cv2.minMaxLoc(power.reshape(1, -1))[3][0]])  # fast argmax
     centroid = dot(power, frequency) / total

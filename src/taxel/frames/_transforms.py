@@ -27,6 +27,18 @@ __all__ = [
 # a rotation block is accepted when R^T R is within this of the identity: loose enough for
 # poses typed into a JSON file with 4-6 decimals, tight enough to reject a scaled matrix
 _ORTHONORMAL_TOLERANCE = 1e-4
+_IDENTITY = np.eye(3)
+_LAST_ROW = np.array([0.0, 0.0, 0.0, 1.0])
+_LAST_ROW_TOLERANCE = 1e-9 + 1e-5 * _LAST_ROW  # np.allclose's atol + rtol |b|
+
+
+def _determinant(m: list[list[float]]) -> float:
+    """Determinant of a 3x3 matrix (cofactors along the first row; cheaper than LAPACK)."""
+    return (
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    )
 
 
 def as_pose(value: Any, *, name: str = "pose") -> np.ndarray:
@@ -62,11 +74,12 @@ def as_pose(value: Any, *, name: str = "pose") -> np.ndarray:
     pose = as_finite_array(name, value, ndim=2)
     if pose.shape != (4, 4):
         raise ValueError(f"`{name}` must have shape (4, 4), got {pose.shape}")
-    if not np.allclose(pose[3], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
+    # np.allclose(pose[3], [0, 0, 0, 1], atol=1e-9), without its overhead
+    if not (np.abs(pose[3] - _LAST_ROW) <= _LAST_ROW_TOLERANCE).all():
         raise ValueError(f"`{name}` must have last row [0, 0, 0, 1], got {pose[3].tolist()}")
     rotation = pose[:3, :3]
-    error = float(np.max(np.abs(rotation.T @ rotation - np.eye(3))))
-    if error > _ORTHONORMAL_TOLERANCE or np.linalg.det(rotation) < 0:
+    error = float(np.maximum.reduce(np.abs(rotation.T @ rotation - _IDENTITY), axis=None))
+    if error > _ORTHONORMAL_TOLERANCE or _determinant(rotation.tolist()) < 0:
         raise ValueError(
             f"`{name}` must have a proper rotation block (orthonormal, det +1), "
             f"got max |R^T R - I| = {error:.3g} and det = {np.linalg.det(rotation):.3g}"
