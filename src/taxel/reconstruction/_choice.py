@@ -247,7 +247,8 @@ class ParameterScan:
                 logs[index] = _parabola_vertex(self.log_grid, values, int(np.argmax(values)))
             else:
                 assert noise is not None
-                target = np.log(noise[index] * np.sqrt(self.count))
+                # no noise at all (an all-zero frame): the smallest lambda on the grid
+                target = np.log(max(noise[index] * np.sqrt(self.count), 1e-300))
                 values = np.log(np.maximum(curve.residual_norm[index], 1e-300))
                 logs[index] = _crossing(self.log_grid, values, target)
         return 10**logs
