@@ -7,6 +7,7 @@ spectral
     signal plus white noise of the same std sigma. The half of the modes that the cover
     passes least (smallest g_i) carry almost no signal when the cover is thick against the
     pitch (vhdta128: d = 3.9 pitches), so sigma^2 = median(beta_i^2) / 0.4549 there
+    (at most the 4096 least-passed modes are used)
     (the median of chi-square with one degree of freedom). Sharp loads on a thin cover
     (resistive16: d = 0.75 pitch) put signal in every mode and inflate it.
 high-frequency
@@ -14,8 +15,9 @@ high-frequency
     the std sigma of the noise and no response to constants or linear trends; a load adds
     to them only near its edges, a minority of the array for a contact, so their median
     absolute value gives sigma (the finest-scale estimator of D. L. Donoho and
-    I. M. Johnstone, Biometrika 81, 1994, on an undecimated grid). Loads that cover most
-    of the array with curvature inflate it.
+    I. M. Johnstone, Biometrika 81, 1994: disjoint blocks on large arrays, every
+    overlapping block on small ones). Loads that cover most of the array with curvature
+    inflate it.
 
 The estimate is the smaller of the two (an estimate that is exactly zero, as quantized
 readings of an unloaded array may give, is ignored).
@@ -29,25 +31,50 @@ __all__ = ["combined_noise", "high_frequency_noise", "spectral_noise"]
 
 # median of chi-square with one degree of freedom: median(x^2) = 0.4549 sigma^2 for N(0, sigma^2)
 _CHI2_MEDIAN = 0.454936423119572
+# disjoint 2 x 2 blocks are used when there are at least this many (else overlapping ones)
+_DISJOINT_ENOUGH = 1024
+
+
+def _median_of_squares(values: np.ndarray) -> np.ndarray:
+    """Median of values^2 along the last axis (the upper one for an even count)."""
+    middle = values.shape[-1] // 2
+    return np.partition(values**2, middle, axis=-1)[..., middle]
 
 
 def spectral_noise(beta: np.ndarray, modes: np.ndarray) -> np.ndarray:
     """The noise std per frame from the coefficients beta (B, r) on the least-passed `modes`."""
     if modes.size == 0:
         return np.full(beta.shape[0], np.inf)
-    return np.sqrt(np.median(beta[:, modes] ** 2, axis=1) / _CHI2_MEDIAN)
+    return np.sqrt(_median_of_squares(beta[:, modes]) / _CHI2_MEDIAN)
 
 
 def high_frequency_noise(frames: np.ndarray, live: np.ndarray) -> np.ndarray:
-    """The noise std per frame (B, rows, cols) from diagonal differences of live 2 x 2 blocks."""
+    """The noise std per frame (B, rows, cols) from diagonal differences of live 2 x 2 blocks.
+
+    Large arrays use the disjoint blocks (independent differences, the decimated finest
+    scale); small ones, where those would be too few, every overlapping block.
+    """
+    rows, cols = frames.shape[-2:]
+    disjoint = (rows // 2) * (cols // 2) >= _DISJOINT_ENOUGH
+    step = 2 if disjoint else 1
+    count_rows, count_cols = (rows // 2, cols // 2) if disjoint else (rows - 1, cols - 1)
+
+    def corner(array: np.ndarray, row: int, col: int) -> np.ndarray:
+        return array[
+            ...,
+            row : row + step * (count_rows - 1) + 1 : step,
+            col : col + step * (count_cols - 1) + 1 : step,
+        ]
+
     difference = (
-        frames[:, :-1, :-1] - frames[:, 1:, :-1] - frames[:, :-1, 1:] + frames[:, 1:, 1:]
+        corner(frames, 0, 0) - corner(frames, 1, 0) - corner(frames, 0, 1) + corner(frames, 1, 1)
     ) / 2
-    usable = live[:-1, :-1] & live[1:, :-1] & live[:-1, 1:] & live[1:, 1:]
+    usable = corner(live, 0, 0) & corner(live, 1, 0) & corner(live, 0, 1) & corner(live, 1, 1)
     if not usable.any():
         return np.full(frames.shape[0], np.inf)
-    values = difference[:, usable]
-    return np.sqrt(np.median(values**2, axis=1) / _CHI2_MEDIAN)
+    flat = difference.reshape(frames.shape[0], -1)
+    values = flat if usable.all() else flat[:, usable.ravel()]
+    return np.sqrt(_median_of_squares(values) / _CHI2_MEDIAN)
 
 
 def combined_noise(*estimates: np.ndarray) -> np.ndarray:
