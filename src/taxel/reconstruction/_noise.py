@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["combined_noise", "high_frequency_noise", "spectral_noise"]
+__all__ = ["combined_noise", "difference_blocks", "high_frequency_noise", "spectral_noise"]
 
 # median of chi-square with one degree of freedom: median(x^2) = 0.4549 sigma^2 for N(0, sigma^2)
 _CHI2_MEDIAN = 0.454936423119572
@@ -48,38 +48,52 @@ def spectral_noise(beta: np.ndarray, modes: np.ndarray) -> np.ndarray:
     return np.sqrt(_median_of_squares(beta[:, modes]) / _CHI2_MEDIAN)
 
 
-def high_frequency_noise(frames: np.ndarray, live: np.ndarray) -> np.ndarray:
-    """The noise std per frame (B, rows, cols) from diagonal differences of live 2 x 2 blocks.
+def _blocks(array: np.ndarray, disjoint: bool, row: int, col: int) -> np.ndarray:
+    """Corner (row, col) of every 2 x 2 block of the last two axes (disjoint or all)."""
+    rows, cols = array.shape[-2:]
+    if disjoint:
+        return array[..., row : row + 2 * (rows // 2) - 1 : 2, col : col + 2 * (cols // 2) - 1 : 2]
+    return array[..., row : row + rows - 1, col : col + cols - 1]
+
+
+def difference_blocks(live: np.ndarray) -> tuple[bool, np.ndarray]:
+    """(disjoint, usable): which 2 x 2 blocks `high_frequency_noise` uses for a live mask.
 
     Large arrays use the disjoint blocks (independent differences, the decimated finest
-    scale); small ones, where those would be too few, every overlapping block.
+    scale); small ones, where those would be too few, every overlapping block. A block
+    is usable when its four taxels are live.
     """
-    rows, cols = frames.shape[-2:]
+    rows, cols = live.shape
     disjoint = (rows // 2) * (cols // 2) >= _DISJOINT_ENOUGH
-    step = 2 if disjoint else 1
-    count_rows, count_cols = (rows // 2, cols // 2) if disjoint else (rows - 1, cols - 1)
+    corners = [_blocks(live, disjoint, r, c) for r, c in ((0, 0), (1, 0), (0, 1), (1, 1))]
+    return disjoint, np.logical_and.reduce(corners).ravel()
 
-    def corner(array: np.ndarray, row: int, col: int) -> np.ndarray:
-        return array[
-            ...,
-            row : row + step * (count_rows - 1) + 1 : step,
-            col : col + step * (count_cols - 1) + 1 : step,
-        ]
 
-    difference = (
-        corner(frames, 0, 0) - corner(frames, 1, 0) - corner(frames, 0, 1) + corner(frames, 1, 1)
-    ) / 2
-    usable = corner(live, 0, 0) & corner(live, 1, 0) & corner(live, 0, 1) & corner(live, 1, 1)
+def high_frequency_noise(
+    frames: np.ndarray, live: np.ndarray, blocks: tuple[bool, np.ndarray] | None = None
+) -> np.ndarray:
+    """The noise std per frame (B, rows, cols) from diagonal differences of live 2 x 2 blocks.
+
+    `blocks` is ``difference_blocks(live)``, computed here when not given.
+    """
+    disjoint, usable = difference_blocks(live) if blocks is None else blocks
     if not usable.any():
         return np.full(frames.shape[0], np.inf)
+    difference = (
+        _blocks(frames, disjoint, 0, 0)
+        - _blocks(frames, disjoint, 1, 0)
+        - _blocks(frames, disjoint, 0, 1)
+        + _blocks(frames, disjoint, 1, 1)
+    )
     flat = difference.reshape(frames.shape[0], -1)
-    values = flat if usable.all() else flat[:, usable.ravel()]
-    return np.sqrt(_median_of_squares(values) / _CHI2_MEDIAN)
+    values = flat if usable.all() else flat[:, usable]
+    # the differences are twice the noise-std variables: (b - b - b + b) / 2
+    return np.sqrt(_median_of_squares(values) / (4 * _CHI2_MEDIAN))
 
 
 def combined_noise(*estimates: np.ndarray) -> np.ndarray:
     """The smallest positive, finite estimate per frame (0 if none is)."""
-    stacked = np.stack(estimates)
-    usable = np.where((stacked > 0) & np.isfinite(stacked), stacked, np.inf)
-    result = usable.min(axis=0)
+    result = np.full(np.shape(estimates[0]), np.inf)
+    for estimate in estimates:
+        result = np.where((estimate > 0) & (estimate < result), estimate, result)
     return np.where(np.isfinite(result), result, 0.0)

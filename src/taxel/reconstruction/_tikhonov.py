@@ -10,7 +10,12 @@ from scipy import ndimage
 from taxel._validation import check_positive
 from taxel.reconstruction._choice import ParameterCurve, ParameterScan
 from taxel.reconstruction._frames import as_frames, parse_regularization, restore_batch
-from taxel.reconstruction._noise import combined_noise, high_frequency_noise, spectral_noise
+from taxel.reconstruction._noise import (
+    combined_noise,
+    difference_blocks,
+    high_frequency_noise,
+    spectral_noise,
+)
 from taxel.reconstruction._operator import forward_operator
 from taxel.reconstruction._result import ReconstructionResult
 from taxel.reconstruction._spec import as_forward_model_spec
@@ -111,6 +116,7 @@ class TikhonovSolver:
         # noise (`_noise`); 4096 give sigma to about 2 %
         least = min(spectrum.g.size // 2, _NOISE_MODES)
         self._noise_modes = np.sort(np.argsort(spectrum.g, kind="stable")[:least])
+        self._noise_blocks = difference_blocks(self.spec.live_taxels)
 
     @property
     def method(self) -> str:
@@ -222,7 +228,7 @@ class TikhonovSolver:
     def _noise(self, frames: np.ndarray, beta: np.ndarray) -> np.ndarray:
         return combined_noise(
             spectral_noise(beta, self._noise_modes),
-            high_frequency_noise(frames, self.spec.live_taxels),
+            high_frequency_noise(frames, self.spec.live_taxels, self._noise_blocks),
         )
 
     def _impute(self, frame: np.ndarray) -> np.ndarray:
