@@ -242,7 +242,6 @@ class SupportSolver:
         if batch != ():
             raise ValueError(f"`frame` must be one frame {self.spec.shape} for support")
         frame = frames[0]
-        self._frame = frame
         rule, _ = parse_regularization(regularization)
         first = self.linear.solve(
             frame, regularization=regularization, noise_level=noise_level, tau=tau
@@ -256,7 +255,9 @@ class SupportSolver:
         stage = f"support of {cells.size} cells from Tikhonov order {self.order} at lambda "
         stage += f"{lam1:.3g} ({rule})"
         if cells.size == 0:
-            return self._result(first, np.zeros(self.spec.load_shape), 0.0, support, stage, 0)
+            return self._result(
+                frame, first, np.zeros(self.spec.load_shape), 0.0, support, stage, 0
+            )
         if cells.size > self.max_cells:
             return self._nonneg(frame, first, f"{stage}: more than {self.max_cells} cells")
         live = self.spec.live_taxels
@@ -298,7 +299,7 @@ class SupportSolver:
         message = f"{stage}, {int(kept.sum())} after {rounds} refinement(s); lambda {lam2:.3g} "
         message += f"on it (GCV); non-negative in {iterations} "
         message += "active-set steps" if converged else "steps, finished by NNLS"
-        return self._result(first, pressure, lam2, support, message, iterations, converged)
+        return self._result(frame, first, pressure, lam2, support, message, iterations, converged)
 
     def _nonneg(self, frame: np.ndarray, first: ReconstructionResult, why: str):
         if self._fallback is None:
@@ -314,6 +315,7 @@ class SupportSolver:
             state.primal < self._fallback.tolerance and state.dual < self._fallback.tolerance
         )
         return self._result(
+            frame,
             first,
             state.z[-1],
             float(first.regularization),
@@ -325,6 +327,7 @@ class SupportSolver:
 
     def _result(
         self,
+        frame: np.ndarray,
         first: ReconstructionResult,
         pressure: np.ndarray,
         lam: float,
@@ -333,7 +336,7 @@ class SupportSolver:
         iterations: int,
         converged: bool = True,
     ) -> ReconstructionResult:
-        misfit = (self.operator.apply(pressure) - self._frame)[self.spec.live_taxels]
+        misfit = (self.operator.apply(pressure) - frame)[self.spec.live_taxels]
         return ReconstructionResult(
             pressure=pressure,
             regularization=lam,
