@@ -37,10 +37,11 @@ def test_writes_the_pressure_map_and_reports(frame_file, tmp_path, capsys):
     assert code == 0
     assert np.load(out).shape == (16, 16)
     text = capsys.readouterr().out
-    assert "lambda = " in text and "(gcv)" in text and "residual norm" in text
+    # the default rule: the discrepancy principle with the noise estimated from the frame
+    assert "lambda = " in text and "(discrepancy)" in text and "residual norm" in text
 
 
-@pytest.mark.parametrize("method", ["tikhonov", "tsvd", "nonneg", "tv"])
+@pytest.mark.parametrize("method", ["tikhonov", "tsvd", "nonneg", "tv", "support"])
 def test_json_summary(frame_file, tmp_path, capsys, method):
     out = tmp_path / "p.npy"
     arguments = [

@@ -107,15 +107,16 @@ def register(commands: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("--sensor", required=True, metavar="PRESET", help="vhdta128, resistive16")
     parser.add_argument(
-        "--method", default="tikhonov", choices=("tikhonov", "tsvd", "nonneg", "tv")
+        "--method", default="tikhonov", choices=("tikhonov", "tsvd", "nonneg", "tv", "support")
     )
     parser.add_argument("--order", default=0, type=int, choices=(0, 1, 2))
     parser.add_argument(
         "--lambda",
         dest="regularization",
-        default="gcv",
+        default="discrepancy",
         metavar="gcv|lcurve|discrepancy|VALUE",
-        help="parameter rule, or lambda >= 0 (mu [Pa] for tv); default gcv",
+        help="parameter rule, or lambda >= 0 (mu [Pa] for tv); default discrepancy, with "
+        "the noise estimated from the frame unless --noise-level is given",
     )
     parser.add_argument("--noise-level", type=float, default=None, help="reading noise std")
     parser.add_argument("--oversampling", type=int, default=1, help="load cells per taxel")

@@ -10,9 +10,13 @@ Forward model of a sensor
 Solvers (class: setup once, then solve frame after frame; function: one call)
     TikhonovSolver (Tikhonov of order 0, 1, 2 and truncated SVD),
     ADMMSolver (non-negative Tikhonov, non-negative total variation),
+    SupportSolver (non-negative least squares on the support of a Tikhonov estimate:
+    force and centroid of a contact), nonneg_quadratic,
     reconstruct, naive_inverse, solver_for, METHODS
 Parameter choice
-    RULES ("gcv", "lcurve", "discrepancy"), ParameterCurve, lcurve_curvature, estimate_noise
+    RULES ("gcv", "lcurve", "discrepancy"; the default is "discrepancy" with the noise
+    estimated from the frame), estimate_noise_level, ParameterCurve, lcurve_curvature,
+    estimate_noise (Wahba's GCV-based estimator, kept for comparison)
 Results
     ReconstructionResult, ShapeResult
 Shape recovery (displacement-sensing sensors)
@@ -28,7 +32,13 @@ penalty is lambda^2 |A|^2/|L|^2 |L x|^2) or, for total variation, mu [Pa];
 from taxel.reconstruction._admm import ADMMSolver
 from taxel.reconstruction._choice import RULES, ParameterCurve, lcurve_curvature
 from taxel.reconstruction._operator import SensorOperator, forward_operator
-from taxel.reconstruction._reconstruct import METHODS, naive_inverse, reconstruct, solver_for
+from taxel.reconstruction._reconstruct import (
+    METHODS,
+    estimate_noise_level,
+    naive_inverse,
+    reconstruct,
+    solver_for,
+)
 from taxel.reconstruction._result import ReconstructionResult
 from taxel.reconstruction._shape import ShapeResult, recover_shape
 from taxel.reconstruction._spec import (
@@ -38,6 +48,7 @@ from taxel.reconstruction._spec import (
     forward_model_preset,
     spec_from_sensor,
 )
+from taxel.reconstruction._support import SupportSolver, nonneg_quadratic
 from taxel.reconstruction._tikhonov import TikhonovSolver, estimate_noise
 
 __all__ = [
@@ -50,13 +61,16 @@ __all__ = [
     "ReconstructionResult",
     "SensorOperator",
     "ShapeResult",
+    "SupportSolver",
     "TikhonovSolver",
     "as_forward_model_spec",
     "estimate_noise",
+    "estimate_noise_level",
     "forward_model_preset",
     "forward_operator",
     "lcurve_curvature",
     "naive_inverse",
+    "nonneg_quadratic",
     "reconstruct",
     "recover_shape",
     "solver_for",

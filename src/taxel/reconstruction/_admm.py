@@ -285,7 +285,7 @@ class ADMMSolver:
         self,
         frame: Any,
         *,
-        regularization: float | str = "gcv",
+        regularization: float | str = "discrepancy",
         noise_level: float | None = None,
         tau: float = 1.0,
         callback=None,

@@ -233,6 +233,12 @@ class ParameterScan:
     def choose(self, rule: str, curve: ParameterCurve, noise: np.ndarray | None) -> np.ndarray:
         """The lambda of each frame (B,) by the rule; `noise`: reading noise std per frame."""
         frames = curve.residual_norm.shape[0]
+        if rule == "discrepancy":
+            assert noise is not None
+            # no noise at all (an all-zero frame): the smallest lambda on the grid
+            target = np.log(np.maximum(np.asarray(noise) * np.sqrt(self.count), 1e-300))
+            values = np.log(np.maximum(curve.residual_norm, 1e-300))
+            return 10 ** _crossings(self.log_grid, values, target)
         logs = np.empty(frames)
         for index in range(frames):
             if rule == "gcv":
@@ -246,21 +252,23 @@ class ParameterScan:
                 values[: self._first_meaningful] = -np.inf
                 logs[index] = _parabola_vertex(self.log_grid, values, int(np.argmax(values)))
             else:
-                assert noise is not None
-                target = np.log(noise[index] * np.sqrt(self.count))
-                values = np.log(np.maximum(curve.residual_norm[index], 1e-300))
-                logs[index] = _crossing(self.log_grid, values, target)
+                raise ValueError(f"unknown rule {rule!r}")
         return 10**logs
 
 
-def _crossing(x: np.ndarray, y: np.ndarray, target: float) -> float:
-    """First x where the non-decreasing y reaches target, interpolated linearly."""
-    above = np.flatnonzero(y >= target)
-    if above.size == 0:
-        return float(x[-1])
-    index = int(above[0])
-    if index == 0:
-        return float(x[0])
-    y0, y1 = y[index - 1], y[index]
-    weight = (target - y0) / (y1 - y0) if y1 > y0 else 0.0
-    return float(x[index - 1] + weight * (x[index] - x[index - 1]))
+def _crossings(x: np.ndarray, y: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """First x where each non-decreasing row of y (B, n) reaches its target (B,).
+
+    Linearly interpolated; x[0] if the row starts above it, x[-1] if it never gets there.
+    """
+    above = y >= target[:, None]
+    index = np.argmax(above, axis=1)
+    never = ~above.any(axis=1)
+    rows = np.arange(y.shape[0])
+    previous = np.maximum(index - 1, 0)
+    y0, y1 = y[rows, previous], y[rows, index]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        weight = np.where(y1 > y0, (target - y0) / (y1 - y0), 0.0)
+    result = x[previous] + weight * (x[index] - x[previous])
+    result = np.where(index == 0, x[0], result)
+    return np.where(never, x[-1], result)

@@ -41,6 +41,8 @@ __all__ = [
     "reading_kernel",
     "reflect_eigenvalues",
     "reflect_matrix",
+    "reflect_normal_block",
+    "reflect_normal_kernel",
     "zero_matrix",
 ]
 
@@ -228,3 +230,36 @@ def reflect_matrix(spec: ForwardModelSpec) -> np.ndarray:
         for col_index in images(cols):
             fine += periodic[row_index[:, None, :, None], col_index[None, :, None, :]]
     return _rows_to_taxels(fine.reshape(rows * cols, rows * cols), spec)
+
+
+def reflect_normal_kernel(spec: ForwardModelSpec) -> np.ndarray:
+    """The 2N-periodic kernel of K^T K for the reflective model on the load grid (k = 1).
+
+    Reflective convolutions compose: K^T K = K K is the reflective convolution whose
+    periodic kernel has the squared spectrum of K's.
+    """
+    spectrum = np.real(fft.fft2(_periodize(reading_kernel(spec), spec.load_shape)))
+    return np.real(fft.ifft2(spectrum**2))
+
+
+def reflect_normal_block(kernel: np.ndarray, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+    """Entries of a reflective convolution between the cells (rows[i], cols[i]) (n, n).
+
+    The images of `reflect_matrix` (direct and mirrored, per axis), gathered for a few
+    cells only: O(n^2) instead of the whole matrix.
+    """
+    period_rows, period_cols = kernel.shape
+    flat = kernel.ravel()
+    row_images = [
+        (np.subtract.outer(rows, rows) % period_rows) * period_cols,
+        (np.add.outer(rows, rows + 1) % period_rows) * period_cols,
+    ]
+    col_images = [
+        np.subtract.outer(cols, cols) % period_cols,
+        np.add.outer(cols, cols + 1) % period_cols,
+    ]
+    block = np.zeros((rows.size, rows.size))
+    for row_index in row_images:
+        for col_index in col_images:
+            block += flat.take(row_index + col_index)
+    return block

@@ -9,17 +9,20 @@ from taxel._validation import check_choice
 from taxel.reconstruction._admm import ADMMSolver
 from taxel.reconstruction._result import ReconstructionResult
 from taxel.reconstruction._spec import ForwardModelSpec, as_forward_model_spec
+from taxel.reconstruction._support import SupportSolver
 from taxel.reconstruction._tikhonov import TikhonovSolver, check_order
 
-__all__ = ["METHODS", "naive_inverse", "reconstruct", "solver_for"]
+__all__ = ["METHODS", "estimate_noise_level", "naive_inverse", "reconstruct", "solver_for"]
 
-METHODS: tuple[str, ...] = ("tikhonov", "tsvd", "nonneg", "tv")
+METHODS: tuple[str, ...] = ("tikhonov", "tsvd", "nonneg", "tv", "support")
 
 
 @lru_cache(maxsize=16)
 def _cached(
     spec: ForwardModelSpec, method: str, order: int, boundary: str, representation: str
-) -> TikhonovSolver | ADMMSolver:
+) -> TikhonovSolver | ADMMSolver | SupportSolver:
+    if method == "support":
+        return SupportSolver(spec, order=order, boundary=boundary, representation=representation)
     if method in ("tikhonov", "tsvd"):
         return TikhonovSolver(
             spec,
@@ -40,7 +43,7 @@ def solver_for(
     order: int = 0,
     boundary: str = "auto",
     representation: str = "auto",
-) -> TikhonovSolver | ADMMSolver:
+) -> TikhonovSolver | ADMMSolver | SupportSolver:
     """The solver of a sensor, built on first use and cached (16 most recent).
 
     Examples
@@ -63,7 +66,7 @@ def reconstruct(
     *,
     method: str = "tikhonov",
     order: int = 0,
-    regularization: float | str = "gcv",
+    regularization: float | str = "discrepancy",
     noise_level: float | None = None,
     tau: float = 1.0,
     boundary: str = "auto",
@@ -77,14 +80,20 @@ def reconstruct(
         Calibrated readings (NaN allowed at dead taxels, which are left out of the fit).
     sensor : ForwardModelSpec or str or object with ``forward_model_spec()``
         The sensor (a preset name such as "vhdta128" or "resistive16").
-    method : {"tikhonov", "tsvd", "nonneg", "tv"}, default "tikhonov"
-        Tikhonov, truncated SVD, non-negative Tikhonov, or non-negative total variation.
+    method : {"tikhonov", "tsvd", "nonneg", "tv", "support"}, default "tikhonov"
+        Tikhonov, truncated SVD, non-negative Tikhonov, non-negative total variation, or
+        non-negative least squares on the support of a Tikhonov estimate
+        (`SupportSolver`: the most accurate force and centroid of a contact).
     order : {0, 1, 2}, default 0
-        Penalty order (identity, gradient, Laplacian) of tikhonov, tsvd and nonneg.
-    regularization : float or {"gcv", "lcurve", "discrepancy"}, default "gcv"
+        Penalty order (identity, gradient, Laplacian) of tikhonov, tsvd and nonneg, and
+        of the first stage of support.
+    regularization : float or {"gcv", "lcurve", "discrepancy"}, default "discrepancy"
         lambda >= 0 (relative units; 0 is the naive inverse), mu [Pa] for "tv", or a rule.
+        The default, the discrepancy principle with the noise estimated from the frame,
+        is the rule that comes closest to the best lambda in the benchmark.
     noise_level : float, optional
-        Reading noise std for "discrepancy"; default the sensor's, else estimated.
+        Reading noise std for "discrepancy"; default the sensor's, else estimated from
+        the frame (`estimate_noise_level`).
     tau : float, default 1.0
         Safety factor of the discrepancy principle.
     boundary, representation : str
@@ -132,3 +141,22 @@ def naive_inverse(frame: Any, sensor: Any, **options: Any) -> ReconstructionResu
     ('naive', True)
     """
     return reconstruct(frame, sensor, method="tikhonov", order=0, regularization=0.0, **options)
+
+
+def estimate_noise_level(frame: Any, sensor: Any) -> float | Any:
+    """The reading noise std of a frame, estimated from the frame itself [reading units].
+
+    What the default parameter rule (the discrepancy principle) uses when the noise level is
+    not given; see `TikhonovSolver.estimate_noise_level`. Per frame for a batch.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from taxel.reconstruction import forward_operator
+    >>> truth = np.zeros((16, 16)); truth[6:9, 7:10] = 30e3
+    >>> frame = forward_operator("resistive16").apply(truth)
+    >>> frame += np.random.default_rng(1).normal(0.0, 2e3, frame.shape)
+    >>> print(f"{estimate_noise_level(frame, 'resistive16'):.1e} Pa (true 2.0e+03 Pa)")
+    1.9e+03 Pa (true 2.0e+03 Pa)
+    """
+    return solver_for(sensor, method="tikhonov", order=0).estimate_noise_level(frame)

@@ -26,7 +26,7 @@ class ReconstructionResult:
     rule : str
         How lambda was chosen: "gcv", "lcurve", "discrepancy", or "given".
     method : str
-        "tikhonov", "tsvd", "nonneg", "tv" or "naive".
+        "tikhonov", "tsvd", "nonneg", "tv", "support" or "naive".
     order : int
         Tikhonov order of the penalty (0 identity, 1 gradient, 2 Laplacian).
     residual_norm : float or numpy.ndarray
@@ -47,6 +47,8 @@ class ReconstructionResult:
         The stopping quantity of an iterative solve (relative change; 0 for direct solves).
     message : str
         How the solve ended.
+    support : numpy.ndarray of bool or None
+        The load cells allowed to carry load (method "support"), else None.
     """
 
     pressure: np.ndarray = field(repr=False)
@@ -63,6 +65,7 @@ class ReconstructionResult:
     n_iterations: int = 0
     residual: float = 0.0
     message: str = "direct solve"
+    support: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def normal_force(self) -> float | np.ndarray:

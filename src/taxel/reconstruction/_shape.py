@@ -55,7 +55,7 @@ def recover_shape(
     *,
     method: str = "nonneg",
     order: int = 1,
-    regularization: float | str = "gcv",
+    regularization: float | str = "discrepancy",
     contact_fraction: float = 0.05,
     **options: Any,
 ) -> ShapeResult:

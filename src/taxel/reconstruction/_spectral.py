@@ -77,6 +77,14 @@ class Spectrum:
         """Solve (A^T A + alpha M + beta I) x = rhs on the load grid (M = L^T L)."""
         raise NotImplementedError
 
+    def cell_variance(self, factors: np.ndarray) -> np.ndarray:
+        """Variance of each load cell of the solution with filter `factors` (r,).
+
+        Per unit variance of white reading noise, shape load_shape; fast factorizations
+        give the mean over the cells everywhere.
+        """
+        raise NotImplementedError
+
 
 class FastSpectrum(Spectrum):
     """DCT-diagonal factorization of the reflective model (any oversampling)."""
@@ -131,6 +139,14 @@ class FastSpectrum(Spectrum):
         else:
             fine = full[:, self._group_flat].reshape(batch, *self.load_shape) * self._expansion
         return _idct(fine)
+
+    def cell_variance(self, factors: np.ndarray) -> np.ndarray:
+        # coarse DCT coefficients are independent, each fine mode is a multiple of one of
+        # them, and the fine basis is orthonormal: the mean over cells is a sum of squares
+        full = np.concatenate([np.ones(self.n_free), factors])
+        amplitude = self._expansion.ravel() * full[self._group_flat]
+        cells = self.load_shape[0] * self.load_shape[1]
+        return np.full(self.load_shape, float(np.sum(amplitude**2)) / cells)
 
     def shifted_solve(self, rhs: np.ndarray, alpha: float, beta: float) -> np.ndarray:
         transformed = _dct(rhs)
@@ -228,6 +244,11 @@ class DenseSpectrum(Spectrum):
     def synthesize(self, filtered: np.ndarray, free: np.ndarray) -> np.ndarray:
         flat = filtered @ self._expansion.T + free @ self._free_basis.T
         return flat.reshape(filtered.shape[0], *self.load_shape)
+
+    def cell_variance(self, factors: np.ndarray) -> np.ndarray:
+        # beta = U^T b and the free part (along A 1, orthogonal to U) are independent
+        variance = self._expansion**2 @ factors**2 + (self._free_basis**2).sum(axis=1)
+        return variance.reshape(self.load_shape)
 
     def shifted_solve(self, rhs: np.ndarray, alpha: float, beta: float) -> np.ndarray:
         key = (float(alpha), float(beta))

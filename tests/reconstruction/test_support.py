@@ -1,0 +1,136 @@
+"""Non-negative least squares on the support of a regularized estimate."""
+
+import numpy as np
+import pytest
+from scipy import optimize
+
+from taxel.reconstruction import (
+    SupportSolver,
+    forward_model_preset,
+    nonneg_quadratic,
+    reconstruct,
+    solver_for,
+)
+
+SMALL = forward_model_preset("resistive16", shape=(12, 12))
+THICK = forward_model_preset("vhdta128", shape=(40, 40))  # d = 3.9 pitches
+
+
+def _centroid(pressure):
+    rows, cols = np.indices(pressure.shape)
+    return np.array([(pressure * rows).sum(), (pressure * cols).sum()]) / pressure.sum()
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_nonneg_quadratic_meets_the_kkt_conditions(seed):
+    rng = np.random.default_rng(seed)
+    factor = rng.normal(size=(40, 30))
+    matrix = factor.T @ factor + 0.1 * np.eye(30)
+    vector = rng.normal(size=30) * 5
+    y, iterations, converged = nonneg_quadratic(matrix, vector, vector > 0)
+    multiplier = matrix @ y - vector
+    assert y.min() >= 0 and multiplier.min() > -1e-9 and converged
+    assert np.abs(y * multiplier).max() < 1e-9  # complementarity
+    root = np.linalg.cholesky(matrix).T  # matrix = root^T root
+    reference, _ = optimize.nnls(root, np.linalg.solve(root.T, vector))
+    assert np.allclose(y, reference, atol=1e-8)
+
+
+@pytest.mark.parametrize(
+    "spec, options",
+    [
+        (SMALL, {"representation": "fast", "boundary": "reflect"}),  # gathered from a kernel
+        (SMALL.with_changes(oversampling=2), {"representation": "fast", "boundary": "reflect"}),
+        (SMALL.with_changes(dead_taxels=[(2, 3)]), {"representation": "fast"}),
+    ],
+    ids=["kernel", "columns-oversampled", "columns-dead-taxel"],
+)
+def test_restricted_normal_matrix_agrees_with_the_dense_one(spec, options):
+    solver = SupportSolver(spec, **options)
+    dense = SupportSolver(spec, representation="dense", boundary="reflect")
+    live = spec.live_taxels
+    cells = np.array([0, 7, 30, 31, 55, 100, 143])
+    matrix = dense.spectrum._matrix
+    expected = matrix[:, cells].T @ matrix[:, cells]
+    assert np.allclose(solver._normal_block(cells, live), expected, atol=1e-10 * expected.max())
+
+
+def test_force_and_centroid_of_a_compact_load():
+    solver = SupportSolver(THICK)
+    truth = np.zeros(THICK.shape)
+    rows, cols = np.indices(THICK.shape)
+    inside = (rows - 19.3) ** 2 + (cols - 21.6) ** 2 < 5.2**2
+    truth[inside] = 150e3 * np.sqrt(1 - ((rows - 19.3) ** 2 + (cols - 21.6) ** 2)[inside] / 5.2**2)
+    frame = solver.operator.apply(truth)
+    frame += np.random.default_rng(5).normal(0.0, 0.01 * THICK.full_scale, frame.shape)
+    result = solver.solve(frame)
+    assert result.method == "support" and result.pressure.min() >= 0 and result.converged
+    # the rim may be peeled where the load fades, not where it is strong
+    assert result.support[truth > 0.6 * truth.max()].all()
+    assert result.normal_force == pytest.approx(truth.sum() * THICK.load_pitch**2, rel=0.01)
+    assert np.hypot(*(_centroid(result.pressure) - _centroid(truth))) < 0.05
+    # the whole-map Tikhonov estimate it started from carries the noise of every taxel
+    linear = reconstruct(frame, THICK)
+    assert np.hypot(*(_centroid(linear.pressure) - _centroid(truth))) > 0.1
+
+
+def test_peeling_the_rim_sharpens_point_loads():
+    spec = forward_model_preset("resistive16", shape=(12, 12), oversampling=2)
+    truth = np.zeros(spec.load_shape)
+    truth[11, [9, 14]] = 0.5 / spec.load_pitch**2  # two 0.5 N points 2.5 mm apart
+    peeled, kept = SupportSolver(spec), SupportSolver(spec, refinements=0)
+    errors = {True: [], False: []}
+    for seed in range(4):
+        frame = peeled.operator.apply(truth)
+        frame += np.random.default_rng(seed).normal(0.0, 2e3, frame.shape)
+        for solver, key in ((peeled, True), (kept, False)):
+            result = solver.solve(frame)
+            errors[key].append(result.normal_force - 1.0)
+            if key:
+                assert result.support[11, [9, 14]].all() and "refinement" in result.message
+    # the blur-wide support keeps the positive half of the noise of its extra cells
+    assert np.mean(errors[False]) > 0.03
+    assert abs(np.mean(errors[True])) < 0.02
+
+
+def test_dense_and_fast_factorizations_give_the_same_solution():
+    truth = np.zeros(SMALL.shape)
+    truth[4:7, 6:8] = 90e3
+    solvers = [
+        SupportSolver(SMALL, representation=r, boundary="reflect") for r in ("dense", "fast")
+    ]
+    frame = solvers[0].operator.apply(truth)
+    frame += np.random.default_rng(6).normal(0.0, 1e3, frame.shape)
+    dense, fast = (s.solve(frame) for s in solvers)
+    assert np.array_equal(dense.support, fast.support)
+    assert dense.regularization == pytest.approx(fast.regularization, rel=1e-6)
+    assert np.allclose(dense.pressure, fast.pressure, atol=1e-6 * 90e3)
+
+
+def test_nothing_to_find_and_too_much_to_find():
+    solver = SupportSolver(SMALL)
+    empty = solver.solve(np.zeros(SMALL.shape), regularization=0.1)
+    assert not empty.support.any() and np.all(empty.pressure == 0.0)
+    assert empty.message.startswith("support of 0 cells")
+    truth = np.full(SMALL.shape, 50e3)
+    frame = solver.operator.apply(truth) + np.random.default_rng(7).normal(0, 1e3, SMALL.shape)
+    spread = SupportSolver(SMALL, max_cells=20).solve(frame)
+    assert spread.support is None and "more than 20 cells" in spread.message
+    assert spread.pressure.min() >= 0
+
+
+def test_through_reconstruct_and_bad_input():
+    truth = np.zeros(SMALL.shape)
+    truth[3:5, 3:5] = 60e3
+    frame = solver_for(SMALL, method="support").operator.apply(truth)
+    result = reconstruct(frame + 1.0, SMALL, method="support", regularization="gcv")
+    assert result.method == "support" and result.rule == "gcv"
+    assert solver_for(SMALL, method="support") is solver_for(SMALL, method="support")
+    with pytest.raises(ValueError, match="`frame` must be one frame"):
+        reconstruct(np.zeros((2, *SMALL.shape)), SMALL, method="support")
+    with pytest.raises(ValueError, match="`threshold` must be > 0"):
+        SupportSolver(SMALL, threshold=0.0)
+    with pytest.raises(ValueError, match="`max_cells` must be >= 1"):
+        SupportSolver(SMALL, max_cells=0)
+    with pytest.raises(ValueError, match="`refinements` must be >= 0"):
+        SupportSolver(SMALL, refinements=-1)
