@@ -15,6 +15,8 @@ def _allowed(layer: str) -> set[str]:
     if layer in STACK:
         below = set(STACK[: STACK.index(layer)])
         beside = {"frames"} if layer in ("features", "active") else set()
+        if layer == "active":
+            beside.add("io")  # the procedures save their tables and libraries
         return below | beside
     if layer in SIDE:
         return SIDE[layer]
