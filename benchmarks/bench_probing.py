@@ -77,7 +77,8 @@ def _plane(quick: bool) -> list[str]:
         )
     lines += [
         "",
-        f"**Target: normal error <= 1 degree from 5 probes: met** (worst of {n} trials "
+        f"**Target: normal error <= 1 degree from 5 probes: "
+        f"{'met' if max(errors) <= 1.0 else 'not met'}** (worst of {n} trials "
         f"{max(errors):.3f} degrees). Planarity residual (RMS of the contact points about the "
         f"fitted plane) on the flat face: median "
         f"{np.median([t.estimate.residual for t in trials]) * 1e6:.1f} um; on a curved "
@@ -104,7 +105,8 @@ def _corner(quick: bool) -> list[str]:
         f"| corner error [mm] | {n} | {_stats(errors, 1e3)} |",
         f"| worst edge direction error [deg] | {n} | {_stats(edges, 1.0)} |",
         "",
-        f"**Target: corner within 1 mm: met** (worst {max(errors) * 1e3:.3f} mm).\n",
+        f"**Target: corner within 1 mm: {'met' if max(errors) <= 1e-3 else 'not met'}** "
+        f"(worst {max(errors) * 1e3:.3f} mm).\n",
     ]
 
 

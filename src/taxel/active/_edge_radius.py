@@ -271,8 +271,8 @@ def build_edge_radius_table(
 
     Examples
     --------
-    >>> table = build_edge_radius_table([2e-3, 6e-3], orientations=2)  # doctest: +SKIP
-    >>> table.radii.tolist()  # doctest: +SKIP
+    >>> table = build_edge_radius_table([2e-3, 6e-3], orientations=2)
+    >>> table.radii.tolist()
     [0.002, 0.006]
     """
     radii = [check_positive("radii", radius) for radius in radii]

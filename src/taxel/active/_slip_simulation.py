@@ -48,7 +48,7 @@ from scipy import signal
 
 from taxel._validation import check_choice
 from taxel.active._slip_frames import sensed_stress
-from taxel.mechanics import Sphere, solve_contact
+from taxel.mechanics import Sphere, effective_modulus, hertz_sphere, solve_contact
 from taxel.sensor import TactileSensor, make_sensor
 
 __all__ = [
@@ -200,8 +200,7 @@ def _master_contact(
 ) -> tuple[np.ndarray, float, float]:
     """The pressure field of the sphere on the pad on a fine grid: (field, spacing, a)."""
     cover = sensor.cover
-    modulus = cover.material.youngs_modulus / (1 - cover.material.poisson_ratio**2)
-    hertz = (3 * normal_force * radius / (4 * modulus)) ** (1 / 3)
+    hertz = hertz_sphere(normal_force, radius, effective_modulus(cover.material)).contact_radius
     spacing = hertz / 25
     n = 2 * int(np.ceil(1.6 * hertz / spacing)) + 1
     offsets = (np.arange(n) - n // 2) * spacing

@@ -41,7 +41,8 @@ from taxel.features._extract import ContactPose, TactileFeatures, extract
 from taxel.features._fitting import CircleFit, LineFit, fit_circle, fit_line
 from taxel.features._gaps import Hole, HoleReport, Slot, SlotReport
 from taxel.features._holes import detect_holes, detect_slots
-from taxel.features._image import Prepared, pitch_pair, prepare, sensor_coordinates
+from taxel.features._image import Prepared, prepare
+from taxel.features._sensor import pitch_pair, sensor_coordinates
 from taxel.features._shape import CONTACT_TYPES, ContactShape, classify_contact
 from taxel.features._surface import ContactPlane, contact_plane
 from taxel.features._texture import Texture, texture_measures

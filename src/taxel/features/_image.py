@@ -27,10 +27,10 @@ from typing import Any
 import cv2
 import numpy as np
 
-from taxel._validation import check_finite, check_positive, check_range
-from taxel.features._sensor import cover_blur, cover_depth
+from taxel._validation import check_finite, check_range
+from taxel.features._sensor import cover_blur, cover_depth, hexagonal_resampled, pitch_pair
 
-__all__ = ["Prepared", "contact_box", "pitch_pair", "prepare", "sensor_coordinates"]
+__all__ = ["Prepared", "contact_box", "prepare"]
 
 # Contact thresholds, in units of the smoothed image's noise sigma (k) or of the contrast (f).
 # The baseline is the minimum of the smoothed image, which lies about 3-4 sigma below the
@@ -177,79 +177,6 @@ def component_outlines(
     return (*holes, outlines[index])
 
 
-def pitch_pair(sensor_or_pitch: Any) -> tuple[float, float]:
-    """(row pitch, column pitch) [m] from a pitch, a pair, or an object with `taxel_pitch`.
-
-    Parameters
-    ----------
-    sensor_or_pitch : float, (float, float) or object with a ``taxel_pitch`` attribute
-        Centre-to-centre distance of the taxels [m]; a pair gives (row, column) pitches.
-
-    Returns
-    -------
-    tuple of float
-
-    Examples
-    --------
-    >>> pitch_pair(1e-3)
-    (0.001, 0.001)
-    >>> pitch_pair((1e-3, 2e-3))
-    (0.001, 0.002)
-    """
-    value = getattr(sensor_or_pitch, "taxel_pitch", sensor_or_pitch)
-    if isinstance(value, tuple | list | np.ndarray):
-        if len(value) != 2:
-            raise ValueError(
-                f"`sensor_or_pitch` must be a pitch or a (row, column) pair, got {value!r}"
-            )
-        pair = (
-            check_positive("sensor_or_pitch[0]", value[0]),
-            check_positive("sensor_or_pitch[1]", value[1]),
-        )
-    else:
-        if isinstance(value, str | bytes):
-            raise TypeError(f"`sensor_or_pitch` must be a number in metres, got {value!r}")
-        pitch = check_positive("sensor_or_pitch", value)
-        pair = (pitch, pitch)
-    for number in pair:
-        if number > 1.0:
-            raise ValueError(
-                f"`sensor_or_pitch` must be a taxel pitch in metres (<= 1), got {number:g}"
-            )
-    return pair
-
-
-def sensor_coordinates(
-    rows: Any, cols: Any, shape: tuple[int, int], sensor_or_pitch: Any
-) -> tuple[np.ndarray, np.ndarray]:
-    """Positions (x, y) [m] in the sensor frame of (fractional) taxel indices.
-
-    Parameters
-    ----------
-    rows, cols : array_like
-        Row and column indices; fractions are allowed (centroids, fitted centres).
-    shape : (int, int)
-        (rows, cols) of the image.
-    sensor_or_pitch : float, pair or object with ``taxel_pitch``
-        Taxel pitch [m].
-
-    Returns
-    -------
-    x, y : numpy.ndarray
-        ``x = (col - (cols - 1) / 2) p_col``, ``y = (row - (rows - 1) / 2) p_row`` [m].
-
-    Examples
-    --------
-    >>> x, y = sensor_coordinates(0, 3, (4, 4), 1e-3)
-    >>> float(x), float(y)
-    (0.0015, -0.0015)
-    """
-    row_pitch, col_pitch = pitch_pair(sensor_or_pitch)
-    rows = np.asarray(rows, dtype=float)
-    cols = np.asarray(cols, dtype=float)
-    return (cols - (shape[1] - 1) / 2) * col_pitch, (rows - (shape[0] - 1) / 2) * row_pitch
-
-
 def _as_image(image: Any) -> np.ndarray:
     """Validate a 2-D numeric image and return it as (contiguous) float32."""
     array = np.asarray(image)
@@ -341,7 +268,8 @@ def prepare(
         larger values mean more pressure.
     sensor_or_pitch : float, pair or object with ``taxel_pitch``
         Taxel pitch [m], or a sensor description (a `taxel.sensor.TactileSensor`), whose
-        cover depth then decides `defects`.
+        cover depth then decides `defects`; a frame of a hexagonal array (of a sensor or an
+        `ArrayGeometry`) is resampled onto the rectangular grid.
     calibrated : bool, default False
         The image holds pressure [Pa]: areas carry a total force.
     smoothing : float, default 1.0
@@ -365,7 +293,7 @@ def prepare(
     >>> prepared.n_regions, int(prepared.mask.sum())
     (1, 21)
     """
-    values = _as_image(image)
+    values = hexagonal_resampled(_as_image(image), sensor_or_pitch)
     pitch = pitch_pair(sensor_or_pitch)
     smoothing = check_range("smoothing", smoothing, 0.0, 20.0)
     step = 2 if values.shape[0] > 64 and values.shape[1] > 64 else 1

@@ -1,9 +1,10 @@
 """What the features take from a sensor description, when they are given one.
 
-Features work on a bare taxel pitch; given a sensor (a `taxel.sensor.TactileSensor`, or
-any object with ``taxel_pitch``, ``cover.depth`` and the sensor's ``fields`` and
-``sensed_quantity``), they also use its cover: how deep the sensing plane lies, and how
-wide the cover spreads a point load at that depth.
+Features work on a bare taxel pitch, on a rectangular grid; given a sensor (a
+`taxel.sensor.TactileSensor`, or any object with ``taxel_pitch``, ``cover.depth`` and the
+sensor's ``fields`` and ``sensed_quantity``), they also use its cover: how deep the sensing
+plane lies, and how wide the cover spreads a point load at that depth; and its layout: a
+hexagonal array's frame is resampled onto the rectangular grid first.
 """
 
 from __future__ import annotations
@@ -12,7 +13,15 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["cover_blur", "cover_depth"]
+from taxel._validation import check_positive
+
+__all__ = [
+    "cover_blur",
+    "cover_depth",
+    "hexagonal_resampled",
+    "pitch_pair",
+    "sensor_coordinates",
+]
 
 _BLUR_CACHE: dict[Any, float] = {}
 
@@ -46,3 +55,92 @@ def cover_blur(sensor_or_pitch: Any) -> float:
         width = float(np.count_nonzero(row >= 0.5 * row.max())) * sensor_or_pitch.taxel_pitch[1]
         _BLUR_CACHE[key] = width
     return width
+
+
+def pitch_pair(sensor_or_pitch: Any) -> tuple[float, float]:
+    """(row pitch, column pitch) [m] from a pitch, a pair, or an object with `taxel_pitch`.
+
+    Parameters
+    ----------
+    sensor_or_pitch : float, (float, float) or object with a ``taxel_pitch`` attribute
+        Centre-to-centre distance of the taxels [m]; a pair gives (row, column) pitches.
+
+    Returns
+    -------
+    tuple of float
+
+    Examples
+    --------
+    >>> pitch_pair(1e-3)
+    (0.001, 0.001)
+    >>> pitch_pair((1e-3, 2e-3))
+    (0.001, 0.002)
+    """
+    value = getattr(sensor_or_pitch, "taxel_pitch", sensor_or_pitch)
+    if isinstance(value, tuple | list | np.ndarray):
+        if len(value) != 2:
+            raise ValueError(
+                f"`sensor_or_pitch` must be a pitch or a (row, column) pair, got {value!r}"
+            )
+        pair = (
+            check_positive("sensor_or_pitch[0]", value[0]),
+            check_positive("sensor_or_pitch[1]", value[1]),
+        )
+    else:
+        if isinstance(value, str | bytes):
+            raise TypeError(f"`sensor_or_pitch` must be a number in metres, got {value!r}")
+        pitch = check_positive("sensor_or_pitch", value)
+        pair = (pitch, pitch)
+    for number in pair:
+        if number > 1.0:
+            raise ValueError(
+                f"`sensor_or_pitch` must be a taxel pitch in metres (<= 1), got {number:g}"
+            )
+    return pair
+
+
+def sensor_coordinates(
+    rows: Any, cols: Any, shape: tuple[int, int], sensor_or_pitch: Any
+) -> tuple[np.ndarray, np.ndarray]:
+    """Positions (x, y) [m] in the sensor frame of (fractional) taxel indices.
+
+    Indices are on the rectangular grid every feature works on; `prepare` resamples a
+    hexagonal array's frame onto it first (`ArrayGeometry.on_rectangular_grid`).
+
+    Parameters
+    ----------
+    rows, cols : array_like
+        Row and column indices; fractions are allowed (centroids, fitted centres).
+    shape : (int, int)
+        (rows, cols) of the image.
+    sensor_or_pitch : float, pair or object with ``taxel_pitch``
+        Taxel pitch [m].
+
+    Returns
+    -------
+    x, y : numpy.ndarray
+        ``x = (col - (cols - 1) / 2) p_col``, ``y = (row - (rows - 1) / 2) p_row`` [m].
+
+    Examples
+    --------
+    >>> x, y = sensor_coordinates(0, 3, (4, 4), 1e-3)
+    >>> float(x), float(y)
+    (0.0015, -0.0015)
+    """
+    row_pitch, col_pitch = pitch_pair(sensor_or_pitch)
+    rows = np.asarray(rows, dtype=float)
+    cols = np.asarray(cols, dtype=float)
+    return (cols - (shape[1] - 1) / 2) * col_pitch, (rows - (shape[0] - 1) / 2) * row_pitch
+
+
+def hexagonal_resampled(values: np.ndarray, sensor_or_pitch: Any) -> np.ndarray:
+    """A frame of a hexagonal array, resampled onto the rectangular grid all features assume.
+
+    Taxels of a hexagonal (triangular) array sit p/4 off the rectangular grid, alternately
+    left and right; only a frame of the array's own shape is resampled (a pressure map on a
+    load grid is already rectangular).
+    """
+    geometry = getattr(sensor_or_pitch, "geometry", sensor_or_pitch)
+    if getattr(geometry, "layout", None) != "hexagonal" or values.shape != geometry.shape:
+        return values
+    return geometry.on_rectangular_grid(values).astype(np.float32)
