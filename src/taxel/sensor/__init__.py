@@ -12,7 +12,8 @@ Harmon's criteria (chapter section 25.2), measured
     reading_step, ReadingStep
 """
 
-from taxel.sensor._calibration import Calibration, calibrate
+from taxel.sensor._calibrate import calibrate
+from taxel.sensor._calibration import Calibration
 from taxel.sensor._calibration_error import CalibrationError, calibration_error
 from taxel.sensor._cover import Cover
 from taxel.sensor._fields import FIELD_NAMES, TaxelFields, taxel_fields

@@ -16,7 +16,8 @@ from typing import Any
 
 import numpy as np
 
-from taxel.sensor._calibration import Calibration, calibrate, check_calibration
+from taxel.sensor._calibrate import calibrate
+from taxel.sensor._calibration import Calibration, check_calibration
 from taxel.sensor._harmon_measures import (
     hysteresis_width,
     monotonic_fraction,

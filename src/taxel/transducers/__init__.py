@@ -113,13 +113,15 @@ from taxel.transducers._noise import (
     neighbour_crosstalk,
     quantize,
 )
-from taxel.transducers._photoelastic import (
-    PhotoelasticFit,
-    PhotoelasticTransducer,
-    fit_load_scale,
+from taxel.transducers._photoelastic import PhotoelasticTransducer
+from taxel.transducers._photoelastic_optics import (
     photoelastic_retardation,
     polariscope_intensity,
     principal_stress_difference,
+)
+from taxel.transducers._photoelastic_recovery import (
+    PhotoelasticFit,
+    fit_load_scale,
     unwrap_retardation,
 )
 from taxel.transducers._piezo_amplifiers import (
