@@ -230,7 +230,15 @@ def _targets(rows: list[dict], contact_rows: list[dict], resolution: dict) -> li
         rule: np.mean([r["ratio"] <= 1.25 for r in rows if r["rule"] == rule]) for rule in RULES
     }
     force, shift, both, frames = contact.contact_targets(contact_rows, CONTACTS)
-    reached = "; ".join(f"{sensor}: {text}" for sensor, (_, text) in resolution.items())
+    per_sensor = {
+        sensor: contact.contact_targets(contact_rows, CONTACTS, sensor) for sensor in SENSORS
+    }
+    forces = "; ".join(f"{s}: {v[0]} of {v[3]}" for s, v in per_sensor.items())
+    shifts = "; ".join(f"{s}: {v[1]} of {v[3]}" for s, v in per_sensor.items())
+    reached = "; ".join(
+        f"{sensor}: {text} ({_verdict(value <= 0.85)})"
+        for sensor, (value, text) in resolution.items()
+    )
     resolved = all(value <= 0.85 for value, _ in resolution.values())
     return [
         "### Targets",
@@ -242,10 +250,10 @@ def _targets(rows: list[dict], contact_rows: list[dict], resolution: dict) -> li
         f"{by_rule['discrepancy']:.0%}, gcv {by_rule['gcv']:.0%}, lcurve "
         f"{by_rule['lcurve']:.0%}) | {_verdict(np.mean(default) >= 0.9)} |",
         f"| total force within 2 % at 1 % noise (method support, contacts: sphere, edge, two "
-        f"points, punch) | {force} of {frames} frames (per sensor and load below) | "
+        f"points, punch) | {force} of {frames} frames ({forces}; per load below) | "
         f"{_verdict(force == frames)} |",
         f"| centroid within 0.1 taxel at 1 % noise (method support, contacts) | {shift} of "
-        f"{frames} frames; both targets together {both} of {frames} | "
+        f"{frames} frames ({shifts}); both targets together {both} of {frames} | "
         f"{_verdict(shift == frames)} |",
         f"| two points resolved at about 0.85 d at 1 % noise (method support) | {reached} | "
         f"{_verdict(resolved)} |",

@@ -117,9 +117,18 @@ def contact_table(rows: list[dict], sensors, loads, *, timed: bool = True) -> li
     return lines
 
 
-def contact_targets(rows: list[dict], contacts) -> tuple[int, int, int, int]:
-    """(force ok, centroid ok, both ok, frames) of the library method on contact loads."""
-    chosen = [r for r in rows if r["method"] == "support (library)" and r["load"] in contacts]
+def contact_targets(
+    rows: list[dict], contacts, sensor: str | None = None
+) -> tuple[int, int, int, int]:
+    """(force ok, centroid ok, both ok, frames) of the library method on contact loads,
+    on one sensor or on all."""
+    chosen = [
+        r
+        for r in rows
+        if r["method"] == "support (library)"
+        and r["load"] in contacts
+        and sensor in (None, r["sensor"])
+    ]
     force = sum(abs(r["force"]) <= 0.02 for r in chosen)
     shift = sum(r["centroid"] <= 0.1 for r in chosen)
     both = sum(abs(r["force"]) <= 0.02 and r["centroid"] <= 0.1 for r in chosen)

@@ -132,3 +132,24 @@ def test_bad_commands_leave_the_finger_retracted(calibration):
                 forces=np.array([12.0]), areas=np.ones((1, 2)), compressions=np.ones((1, 2))
             )
         )
+
+
+def test_a_touch_too_faint_to_see_is_no_failure(calibration):
+    # a 25 mm rigid face touched with 0.05 N is under 100 Pa: no imprint the camera shows;
+    # the pad's compression there is taken as zero and the presses that follow decide
+    faint = PadCalibration(
+        forces=np.array([0.05, 12.0, 39.0]),
+        areas=calibration.areas,
+        compressions=calibration.compressions,
+        sensor=calibration.sensor,
+    )
+    block = make_deformation_object(
+        "acrylic block", shape="block", size=25e-3, youngs_modulus=3.2e9, poisson_ratio=0.37
+    )
+    top = float(block.top)
+    finger = SimulatedFinger(make_sensor("vhdta128"), [block], make_pose(DOWN, [0, 0, top + 5e-3]))
+    result = Deformation(faint).run(finger)
+    assert result.area_pixels[0] == 0 and result.pad_compressions[0] == 0.0
+    assert result.area_pixels[1] > 0
+    assert not result.deformable
+    assert result.heights[1] == pytest.approx(top, abs=0.05e-3)

@@ -141,11 +141,15 @@ class Deformation:
     Notes
     -----
     Three presses from the same approach pose, retracting in between: a touch (finds the
-    surface), a light and a firm press. In each, the area of the imprint's core (above half
-    its peak, `core_area`) gives the pad's compression from the calibration
-    (`PadCalibration.compression`), and the object's top
-    lies that far beyond the pressed sensor surface. Between the light and the firm press
-    the finger's travel grows by the object's deformation plus the pad's compression, so
+    surface), a light and a firm press. A touch on a broad face may leave an imprint too
+    faint for the sensor to show (a 25 mm flat face at 0.5 N is under 1 kPa); the pad's
+    compression is then taken as zero (it is microns at such a pressure) and the touch's
+    area as zero. The light and firm presses must show an imprint.
+
+    In each press, the area of the imprint's core (above a quarter of its peak, `core_area`) gives
+    the pad's compression from the calibration (`PadCalibration.compression`), and the
+    object's top lies that far beyond the pressed sensor surface. Between the light and the
+    firm press the finger's travel grows by the object's deformation plus the pad's compression, so
 
         object deformation = change of travel - change of pad compression,
 
@@ -168,11 +172,15 @@ class Deformation:
         self.calibration = calibration
         self.table_height = float(table_height)
 
-    def _press(self, probe: Probe, force: float) -> tuple[ProbeReading, float, int, float, float]:
+    def _press(
+        self, probe: Probe, force: float, *, touch: bool
+    ) -> tuple[ProbeReading, float, int, float, float]:
         reading = probe.press(normal_force=force)
         sensor = probe.sensor
         contact = find_contact(reading.frame.raw, sensor)
         if not contact.present:
+            if touch:  # a broad face at a light touch: too faint to see, too light to matter
+                return reading, 0.0, 0, 0.0, 0.0
             raise ValueError(f"the press at {force:g} N shows no contact in the tactile image")
         prepared = prepare(reading.frame.raw, sensor)
         excess = np.clip(prepared.smooth - prepared.baseline, 0.0, None)
@@ -195,11 +203,14 @@ class Deformation:
         travels, pads, heights, areas, pixels, intensities = [], [], [], [], [], []
         try:
             for force, action in zip(forces, ("touch", "light press", "firm press"), strict=True):
-                reading, area, count, intensity, core = self._press(probe, force)
+                touch = action == "touch"
+                reading, area, count, intensity, core = self._press(probe, force, touch=touch)
                 probe.retract()
-                if core <= 0:
+                if core <= 0 and not touch:
                     raise ValueError(f"the press at {force:g} N shows no imprint core")
-                pad = self.calibration.compression(force, core)
+                # an imprint too faint to see is a pressure below the sensor's threshold
+                # spread over a broad face: the pad's compression is negligible there
+                pad = self.calibration.compression(force, core) if core > 0 else 0.0
                 # the object's top is the pad's compression beyond the pressed sensor surface
                 down = transform_directions(reading.pose, [0.0, 0.0, 1.0])
                 height = float(reading.pose[2, 3] - self.table_height - pad * down[2])
