@@ -146,10 +146,11 @@ class Deformation:
     compression is then taken as zero (it is microns at such a pressure) and the touch's
     area as zero. The light and firm presses must show an imprint.
 
-    In each press, the area of the imprint's core (above a quarter of its peak, `core_area`) gives
-    the pad's compression from the calibration (`PadCalibration.compression`), and the
-    object's top lies that far beyond the pressed sensor surface. Between the light and the
-    firm press the finger's travel grows by the object's deformation plus the pad's compression, so
+    In each press, the area of the imprint's core (above a quarter of its peak,
+    `core_area`) gives the pad's compression from the calibration
+    (`PadCalibration.compression`), and the object's top lies that far beyond the pressed
+    sensor surface. Between the light and the firm press the finger's travel grows by the
+    object's deformation plus the pad's compression, so
 
         object deformation = change of travel - change of pad compression,
 
