@@ -128,14 +128,17 @@ def taxel_fields(
             return zeros
         return grid.taxel_means(_depth_operator(name, *key).apply(pressure))
 
-    if "displacement" in need and displacement is None:
-        operator = _displacement_operator(
-            grid.shape, grid.spacing, cover.material, cover.thickness
-        )
-        displacement = operator.apply(pressure)
+    displacement_means = zeros
+    if "displacement" in need:
+        if displacement is None:
+            operator = _displacement_operator(
+                grid.shape, grid.spacing, cover.material, cover.thickness
+            )
+            displacement = operator.apply(pressure)
+        displacement_means = grid.taxel_means(displacement)
     return TaxelFields(
         pressure=grid.taxel_means(pressure) if "pressure" in need else zeros,
         stress=at_depth("stress"),
         strain=at_depth("strain"),
-        displacement=grid.taxel_means(displacement) if "displacement" in need else zeros,
+        displacement=displacement_means,
     )

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -20,7 +20,14 @@ from taxel.sensor._cover import Cover
 from taxel.sensor._fields import TaxelFields, taxel_fields
 from taxel.sensor._geometry import ArrayGeometry, LoadGrid
 from taxel.sensor._readout import Readout, ReadoutChain
-from taxel.transducers import FtirTransducer, Transducer, add_drift, creep, play_hysteresis
+from taxel.transducers import (
+    FtirTransducer,
+    PhotoelasticTransducer,
+    Transducer,
+    add_drift,
+    creep,
+    play_hysteresis,
+)
 
 __all__ = ["SensorFrame", "TactileSensor"]
 
@@ -215,7 +222,7 @@ class TactileSensor:
                 return fields.strain
             return fields.stress / self.cell_modulus
         # stress_difference: through the photoelastic layer under the cover (half-space model)
-        thickness = self.transducer.layer_thickness
+        thickness = cast(PhotoelasticTransducer, self.transducer).layer_thickness
         nodes, weights = np.polynomial.legendre.leggauss(3)
         total = np.zeros(self.load_grid.shape)
         for node, weight in zip(nodes, weights, strict=True):
@@ -283,7 +290,8 @@ class TactileSensor:
         loaded = self._ideal_signal(np.full(self.load_grid.shape, self.full_scale))
         values = np.concatenate([np.ravel(rest), np.ravel(loaded)])
         if self.quantity == "stress_difference":  # a flat plate makes no fringes
-            values = np.append(values, self.transducer.source_intensity)
+            photoelastic = cast(PhotoelasticTransducer, self.transducer)
+            values = np.append(values, photoelastic.source_intensity)
         if self.is_dynamic:  # a step can swing either way before it fades
             values = np.append(values, -values)
         low, high = float(values.min()), float(values.max())

@@ -33,11 +33,13 @@ class Transducer(Protocol):
     quantity_unit: ClassVar[str]
     signal_unit: ClassVar[str]
 
-    def respond(self, value: Any, /, **options: Any) -> Any:
+    # `*args: Any, **options: Any` is how a type checker is told "any further parameters":
+    # each model declares its own keyword-only options (none take more positionals).
+    def respond(self, value: Any, /, *args: Any, **options: Any) -> Any:
         """Signal produced by the sensed quantity `value`."""
         ...
 
-    def invert(self, signal: Any, /, **options: Any) -> Any:
+    def invert(self, signal: Any, /, *args: Any, **options: Any) -> Any:
         """Sensed quantity recovered from `signal`."""
         ...
 
