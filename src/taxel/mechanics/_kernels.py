@@ -14,6 +14,7 @@ bonded layer transmits nothing, so there the correction is minus the half-space 
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import cast
 
 import numpy as np
 from scipy import integrate, special
@@ -121,21 +122,27 @@ def displacement_kernel(
     return halfspace + _cell_average(table, far, 2.0 * thickness, dy, dx, y, x)
 
 
-def _strain_parts(depth: float, material: ElasticMaterial, thickness: float):
-    """Half-space cell kernel, transfer difference and point-load far field of eps_z."""
+def _strain_parts(depth: float, material: ElasticMaterial, thickness: float | None):
+    """Half-space cell kernel, transfer difference and point-load far field of eps_z.
+
+    `thickness` is None for a half-space; the transfer difference is then never called.
+    """
     return (
         lambda x, y, bounds: rectangle_strain(x, y, bounds, depth, material),
-        lambda q: layer_strain_transfer(q, depth, thickness, material)
+        lambda q: layer_strain_transfer(q, depth, cast(float, thickness), material)
         - halfspace_strain_transfer(q, depth, material),
         lambda r: point_load_strain(r, depth, 1.0, material),
     )
 
 
-def _stress_parts(depth: float, material: ElasticMaterial, thickness: float):
-    """Half-space cell kernel, transfer difference and point-load far field of sigma_z."""
+def _stress_parts(depth: float, material: ElasticMaterial, thickness: float | None):
+    """Half-space cell kernel, transfer difference and point-load far field of sigma_z.
+
+    `thickness` is None for a half-space; the transfer difference is then never called.
+    """
     return (
         lambda x, y, bounds: rectangle_stress(x, y, bounds, depth),
-        lambda q: layer_stress_transfer(q, depth, thickness, material)
+        lambda q: layer_stress_transfer(q, depth, cast(float, thickness), material)
         - halfspace_stress_transfer(q, depth),
         lambda r: point_load_stress(r, depth, 1.0),
     )

@@ -35,9 +35,9 @@ def _sample(tile: _Tile, u: np.ndarray, v: np.ndarray) -> np.ndarray:
     rows, cols = tile.heights.shape
     u, v = np.broadcast_arrays(u, v)
     coordinates = np.stack([v.ravel() / tile.period_y * rows, u.ravel() / tile.period_x * cols])
-    tile = tile.heights
-    finite = np.where(np.isfinite(tile), tile, 0.0)
-    holes = (~np.isfinite(tile)).astype(float)
+    samples = tile.heights
+    finite = np.where(np.isfinite(samples), samples, 0.0)
+    holes = (~np.isfinite(samples)).astype(float)
     heights = ndimage.map_coordinates(finite, coordinates, order=1, mode="grid-wrap")
     inside_hole = ndimage.map_coordinates(holes, coordinates, order=1, mode="grid-wrap")
     return np.where(inside_hole >= 0.5, np.inf, heights).reshape(u.shape)
