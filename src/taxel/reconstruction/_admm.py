@@ -310,6 +310,7 @@ class ADMMSolver:
             seminorm = float(np.sqrt(np.vdot(state.z[0], self.spectrum.apply_penalty(state.z[0]))))
         else:
             if rule == "given":
+                assert value is not None  # a given rule always comes with its number
                 parameter = float(value)
                 state = self.run(frame, parameter, callback=callback)
             else:

@@ -192,6 +192,7 @@ class ParameterScan:
     def _compress(self, beta2: np.ndarray) -> np.ndarray:
         if self._order is None:
             return beta2
+        assert self._starts is not None  # set together with _order
         return np.add.reduceat(beta2[:, self._order], self._starts, axis=1)
 
     def curves(self, beta2: np.ndarray, rest: np.ndarray, *, full: bool = True) -> ParameterCurve:

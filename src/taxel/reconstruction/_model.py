@@ -58,11 +58,13 @@ def _kernel(
 ) -> np.ndarray:
     if quantity == "stress":
         operator = depth_stress_operator(shape, pitch, depth, material, thickness=thickness)
-        kernel = -operator.kernel  # calibrated reading: -sigma_z, positive under load
     elif quantity == "strain":
-        kernel = depth_strain_operator(shape, pitch, depth, material, thickness=thickness).kernel
+        operator = depth_strain_operator(shape, pitch, depth, material, thickness=thickness)
     else:
-        kernel = surface_displacement_operator(shape, pitch, material, thickness=thickness).kernel
+        operator = surface_displacement_operator(shape, pitch, material, thickness=thickness)
+    assert operator.kernel is not None  # a zero-padded operator keeps its real-space kernel
+    # calibrated stress reading: -sigma_z, positive under load
+    kernel = -operator.kernel if quantity == "stress" else operator.kernel
     kernel.setflags(write=False)
     return kernel
 

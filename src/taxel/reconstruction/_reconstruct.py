@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from functools import lru_cache
-from typing import Any
+from typing import Any, cast
 
 from taxel._validation import check_choice
 from taxel.reconstruction._admm import ADMMSolver
@@ -159,4 +159,5 @@ def estimate_noise_level(frame: Any, sensor: Any) -> float | Any:
     >>> print(f"{estimate_noise_level(frame, 'resistive16'):.1e} Pa (true 2.0e+03 Pa)")
     1.9e+03 Pa (true 2.0e+03 Pa)
     """
-    return solver_for(sensor, method="tikhonov", order=0).estimate_noise_level(frame)
+    solver = cast(TikhonovSolver, solver_for(sensor, method="tikhonov", order=0))
+    return solver.estimate_noise_level(frame)

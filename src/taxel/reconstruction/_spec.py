@@ -206,7 +206,7 @@ def spec_from_sensor(sensor: TactileSensor, **changes: Any) -> ForwardModelSpec:
     reading = _READING[quantity]
     if quantity == "strain" and sensor.cell_modulus is not None:
         reading = "stress"
-    fields = {
+    fields: dict[str, Any] = {
         "shape": geometry.shape,
         "taxel_pitch": col_pitch,
         "material": sensor.cover.material,

@@ -217,7 +217,7 @@ class SupportSolver:
         block = np.empty((cells.size, cells.size))
         for start in range(0, cells.size, _CHUNK):
             chosen = cells[start : start + _CHUNK]
-            unit = np.zeros((chosen.size, shape[0] * shape[1]))
+            unit: np.ndarray = np.zeros((chosen.size, shape[0] * shape[1]))
             unit[np.arange(chosen.size), chosen] = 1.0
             unit = unit.reshape(chosen.size, *shape)
             image = self.operator.adjoint(live * self.operator.apply(unit))

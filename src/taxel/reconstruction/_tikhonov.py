@@ -286,6 +286,7 @@ class TikhonovSolver:
         live = self.spec.live_taxels
         outputs = []
         for frame in frames:
+            frame_noise: float | np.ndarray | None
             filled = self._impute(frame)
             if rule == "discrepancy" and noise_level is None:  # once, from the live readings
                 frame_noise = self._noise(filled[None], self.spectrum.analyze(filled[None])[0])
@@ -300,10 +301,10 @@ class TikhonovSolver:
             seminorm = np.sqrt(np.vdot(pressure, self._penalty(pressure)))
             outputs.append((pressure, lam, residual, seminorm, parts[4], parts[5]))
         pressure = np.stack([o[0] for o in outputs])
-        lam, residual, seminorm = (np.array([o[i] for o in outputs]) for i in (1, 2, 3))
+        lams, residuals, seminorms = (np.array([o[i] for o in outputs]) for i in (1, 2, 3))
         noise = None if outputs[0][4] is None else np.concatenate([o[4] for o in outputs])
         curve = outputs[-1][5] if len(outputs) == 1 else None
-        return pressure, lam, residual, seminorm, noise, curve
+        return pressure, lams, residuals, seminorms, noise, curve
 
     def _penalty(self, pressure: np.ndarray) -> np.ndarray:
         return self.spectrum.apply_penalty(pressure)
