@@ -244,8 +244,10 @@ def contact_regions(prepared: Prepared) -> Contact:
         all_r, all_c = float(w_r.sum()) / total_w, float(w_c.sum()) / total_w
     else:
         all_r, all_c = float(s_r.sum() / count.sum()), float(s_c.sum() / count.sum())
-    total = [np.array([s.sum()]) for s in (count, s_r, s_c, s_rr, s_cc, s_rc)]
-    major_all, minor_all, angle_all = _axes(*total, prepared.pitch)
+    t_count, t_r, t_c, t_rr, t_cc, t_rc = (
+        np.array([s.sum()]) for s in (count, s_r, s_c, s_rr, s_cc, s_rc)
+    )
+    major_all, minor_all, angle_all = _axes(t_count, t_r, t_c, t_rr, t_cc, t_rc, prepared.pitch)
     return Contact(
         present=True,
         centroid_index=(all_r, all_c),

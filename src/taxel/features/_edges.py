@@ -72,7 +72,9 @@ def edges_core(prepared: Prepared) -> Edges:
     # below the ~540 that a full-contrast step blurred by 1.5 taxels gives
     noise = _NOISE_SOBEL * prepared.noise * 255.0 / span
     high = min(max(_CANNY_HIGH, noise), _CANNY_CAP)
-    edges = cv2.Canny(image8, min(max(_CANNY_LOW, noise / 2), high / 2), high, L2gradient=True)
+    edges: np.ndarray = cv2.Canny(
+        image8, min(max(_CANNY_LOW, noise / 2), high / 2), high, L2gradient=True
+    )
     # keep edges within 3 taxels of the contact's outline: an edge is where contact starts or
     # stops, not a ripple of pressure inside a face (texture is measured separately)
     outline = cv2.morphologyEx(prepared.mask, cv2.MORPH_GRADIENT, _OUTLINE_KERNEL)

@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import cast
 
 import cv2
 import numpy as np
@@ -377,15 +378,17 @@ def gaps_core(
                 if explained[int(round(row)), int(round(col))]:
                     continue
         measured = _measure(prepared, contour, level)
-        if measured is None or measured[0] is None:
+        if measured is None:
             continue
         found, where, region, even = measured
+        if found is None:
+            continue
         if isinstance(found, Hole):
             holes.append(found)
             evenness.append(even)
         elif not textured:
             slots.append(found)
-        explained[where] |= cv2.dilate(region, _GROW)
+        explained[where] |= cast(np.ndarray, cv2.dilate(region, _GROW))  # uint8, as region
         marked = True
     if textured and not _perforated(holes, evenness):
         holes = []

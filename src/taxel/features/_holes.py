@@ -6,6 +6,7 @@ The gap test itself (basins, their depth and shape) is in `taxel.features._gaps`
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import Any
 
 import cv2
@@ -79,7 +80,7 @@ def outline_contours(prepared: Prepared) -> tuple[np.ndarray, ...]:
 
 
 def outline_taxels(
-    prepared: Prepared, contours: list[np.ndarray] | None = None
+    prepared: Prepared, contours: Sequence[np.ndarray] | None = None
 ) -> tuple[np.ndarray, np.ndarray]:
     """(cols, rows) of the taxels on the outlines of the contact mask (internal)."""
     if contours is None:

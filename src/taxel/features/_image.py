@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, cast
 
 import cv2
 import numpy as np
@@ -331,7 +331,11 @@ def prepare(
     outlines, hierarchy = cv2.findContours(candidates, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
     if len(outlines) == 1 or int(np.count_nonzero(hierarchy[0][:, 3] < 0)) == 1:
         return Prepared(
-            mask=candidates, labels=candidates, n_regions=1, outlines=outlines, **common
+            mask=candidates,
+            labels=candidates,
+            n_regions=1,
+            outlines=cast(tuple[np.ndarray, ...], outlines),  # cv2 gives a tuple
+            **common,
         )
     # several candidate regions (a contact and specks of noise, scratches), usually one
     # seeded: the peak's, which a flood fill from the peak gives more cheaply than labelling

@@ -6,6 +6,7 @@ Helpers of `classify_contact`. Coordinates are taxel indices (x = column, y = ro
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -152,7 +153,7 @@ def bends(arms: tuple[float, float]) -> bool:
 
 
 def free_chains(
-    contours: list[np.ndarray],
+    contours: Sequence[np.ndarray],
     shape: tuple[int, int],
     explained: np.ndarray,
     margin: int = 1,

@@ -47,7 +47,7 @@ mechanics) and its depth.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -195,7 +195,7 @@ def is_textured(contact: Contact, high_point_count: int) -> bool:
 
 
 def _free_outline(
-    contours: list[np.ndarray], prepared: Prepared, explained: np.ndarray
+    contours: Sequence[np.ndarray], prepared: Prepared, explained: np.ndarray
 ) -> tuple[str, float, float, str] | None:
     """Type from the free outline pieces (see the module notes), or None without any.
 
@@ -241,7 +241,7 @@ def shape_core(
     explained: np.ndarray,
     high_point_count: int,
     point_size: float = _POINT_SIZE,
-    contours: list[np.ndarray] | None = None,
+    contours: Sequence[np.ndarray] | None = None,
     outline_fit: _OutlineFit | Callable[[], _OutlineFit | None] | None = None,
 ) -> ContactShape:
     """Classify a prepared image (internal core of `classify_contact`).
@@ -275,6 +275,7 @@ def shape_core(
                 points = np.concatenate(outline).reshape(-1, 2).astype(float)
                 fitted_line, fitted_circle = fit_line_and_circle(points[:, 0], points[:, 1])
         if fitted_line is not None:
+            assert fitted_circle is not None  # the line and circle are fitted together
             fitted_line = to_metres_line(fitted_line, prepared)
             fitted_circle = to_metres_circle(fitted_circle, prepared)
         return ContactShape(
