@@ -110,17 +110,19 @@ class ProfileObject(SceneObject):
         if direction[2] >= -1e-6:
             raise ValueError("a profile object must be approached from above (sensor facing down)")
         # fixed-point iteration on the height field; exact in one step for a vertical ray
+        profile = self.profile
+        assert profile is not None  # checked in __post_init__
         t = (origins[:, 2] - self.top) / -direction[2]
         for _ in range(8):
             point = origins + t[:, None] * direction
-            surface = self.top - self.profile.local_heights(point[:, 0], point[:, 1])
+            surface = self.top - profile.local_heights(point[:, 0], point[:, 1])
             t_next = (origins[:, 2] - surface) / -direction[2]
             if np.allclose(t_next, t, rtol=0, atol=1e-10, equal_nan=True):
                 t = t_next
                 break
             t = np.where(np.isfinite(t_next), t_next, t)
         point = origins + t[:, None] * direction
-        hit = np.isfinite(self.profile.local_heights(point[:, 0], point[:, 1]))
+        hit = np.isfinite(profile.local_heights(point[:, 0], point[:, 1]))
         return np.where(hit & np.isfinite(t), t, _MISS)
 
     def support_travel(self, normal_force: float) -> float:

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -25,6 +25,7 @@ from taxel.active._slip_simulation import (
     simulate_slip,
     slip_sensors,
 )
+from taxel.transducers import PiezoelectricTransducer
 
 __all__ = [
     "SlipCalibration",
@@ -126,7 +127,8 @@ class SlipEvaluation:
 
 def _default_settings() -> dict[str, Any]:
     """The simulated finger's charge-amplifier time constant (`slip_sensors`)."""
-    return {"piezo_time_constant": slip_sensors()[1].transducer.time_constant}
+    piezo = cast(PiezoelectricTransducer, slip_sensors()[1].transducer)
+    return {"piezo_time_constant": piezo.time_constant}
 
 
 def score_slip_detection(
@@ -177,21 +179,21 @@ def _tally(
         else:
             incipient_free += 1
             incipient_alarms += incipient is not None or gross is not None
-    latencies = np.array(latencies, dtype=int)
+    gross_latencies = np.array(latencies, dtype=int)
     n_slip = counts["slip"]
     n_free = counts["hold"] + counts["steady"]
     return SlipEvaluation(
         n_slip=n_slip,
         n_hold=counts["hold"],
         n_steady=counts["steady"],
-        detection_rate=latencies.size / n_slip if n_slip else float("nan"),
+        detection_rate=gross_latencies.size / n_slip if n_slip else float("nan"),
         detection_within={
-            limit: float(np.sum(latencies <= limit) / n_slip) if n_slip else float("nan")
+            limit: float(np.sum(gross_latencies <= limit) / n_slip) if n_slip else float("nan")
             for limit in (1, 3, 5, 10)
         },
         false_alarm_rate=alarms / n_free if n_free else float("nan"),
         premature_rate=premature / n_slip if n_slip else float("nan"),
-        latencies=latencies,
+        latencies=gross_latencies,
         incipient_detection_rate=(
             len(incipient_latencies) / incipient_truths if incipient_truths else float("nan")
         ),

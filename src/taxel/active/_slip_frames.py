@@ -65,7 +65,12 @@ def _taxel_operators(sensor: TactileSensor) -> tuple[np.ndarray, np.ndarray, np.
         grid.shape, grid.spacing, cover.depth, cover.material, thickness=cover.thickness
     )
     kx, ky = _cerruti_kernels(sensor)
-    return tuple(_block_map(kernel, sensor) for kernel in (operator.kernel, kx, ky))
+    assert operator.kernel is not None  # a zero-padded operator keeps its real-space kernel
+    return (
+        _block_map(operator.kernel, sensor),
+        _block_map(kx, sensor),
+        _block_map(ky, sensor),
+    )
 
 
 def sensed_stress(
@@ -90,7 +95,7 @@ def sensed_stress(
     centre = (master.shape[0] - 1) / 2
     cell = grid.spacing[0] * grid.spacing[1]
     n_frames = offsets.shape[0]
-    pressure = np.empty((n_frames, *grid.shape))
+    pressure: np.ndarray = np.empty((n_frames, *grid.shape))
     traction = np.empty_like(pressure)
     for k in range(n_frames):
         u, v = (x - offsets[k, 0]) / spacing, (y - offsets[k, 1]) / spacing
