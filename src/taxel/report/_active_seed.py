@@ -44,6 +44,7 @@ def _imprints(
     figures, areas = [], []
     for force in forces:
         reading = finger.press(normal_force=force)
+        assert reading.frame.contact is not None  # a pressed frame carries its contact
         areas.append(reading.frame.contact.contact_area)
         if draw:
             features = extract(reading.frame.raw, sensor)

@@ -34,6 +34,7 @@ def inverse_problem(
     """Naive against regularized reconstruction at rising noise, and the L-curve."""
     sensor = context.sensor("vhdta128")
     frame = sensor.press(make_indenter("sphere", radius=6.25e-3), normal_force=12.0)
+    assert frame.contact is not None  # a pressed frame carries its contact
     truth = frame.contact.pressure
     clean = -frame.fields.stress  # what a calibrated taxel reads: the pressure at its depth
     rng = context.rng(60)
@@ -77,6 +78,7 @@ def inverse_problem(
         ax.set_yticks([])
     figure.colorbar(shown, ax=panels[2], shrink=0.8)
     curve = regular.curve
+    assert curve is not None  # a lambda chosen by GCV for one frame keeps its curve
     ax = panels[3]
     ax.loglog(curve.residual_norm, curve.solution_norm, lw=1)
     chosen = np.argmin(np.abs(curve.regularization - regular.regularization))

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from taxel.features import extract
@@ -75,7 +77,7 @@ def _compare(firm: str, light: str, greater: bool) -> str:
     return f"{firm} {'>' if greater else '<='} {light}"
 
 
-def _edge_measures(image: np.ndarray, features, pitch: float) -> dict[str, float]:
+def _edge_measures(image: np.ndarray, features, pitch: float) -> dict[str, Any]:
     """Width [m], mean intensity and cross-section area of a line contact."""
     background = float(np.percentile(image, 5))
     contact = image > background + 6  # a few camera noise levels above the background

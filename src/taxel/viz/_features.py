@@ -77,9 +77,9 @@ def plot_features(image: Any, features: Any, sensor_or_pitch: Any, *, ax: Any = 
     for slot in features.slots.items:
         direction = np.array([math.cos(slot.angle_rad), math.sin(slot.angle_rad)])
         normal = np.array([-direction[1], direction[0]])
-        centre = np.array(slot.center_m)
+        middle = np.array(slot.center_m)
         corners = [
-            centre + a * slot.length_m / 2 * direction + b * slot.width_m / 2 * normal
+            middle + a * slot.length_m / 2 * direction + b * slot.width_m / 2 * normal
             for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1), (-1, -1))
         ]
         points = [to_index(*c) for c in corners]
