@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -52,7 +53,7 @@ def plane_core(
     prepared: Prepared,
     depth: np.ndarray | None = None,
     *,
-    contours: list[np.ndarray] | None = None,
+    contours: Sequence[np.ndarray] | None = None,
 ) -> ContactPlane:
     """Planarity and normal of a prepared image (internal core of `contact_plane`).
 
