@@ -403,6 +403,10 @@ def _accuracy(quick: bool, seed: int = SEED, details: bool = False) -> tuple[str
                 f"{_f1_score([r['slot'] for r in rows])[0]:.3f} | {medians[0]:.3g} taxel | "
                 f"{medians[1]:.3g} deg | {medians[2]:.3g} % | {medians[3]:.3g} mm |"
             )
+    scales = {
+        name: features_scenes.full_scale(features_scenes.benchmark_sensor(name))
+        for name in SENSORS
+    }
     header = [
         "\n### Accuracy on simulated frames\n",
         f"{per_indenter} frames of each of the 14 library indenters per sensor (seed {seed}), "
@@ -412,7 +416,8 @@ def _accuracy(quick: bool, seed: int = SEED, details: bool = False) -> tuple[str
         "for the 16x16 array). Then Gaussian noise of standard deviation `level x full "
         "scale` is added, `level` uniform in [0, 5 %], full scale being the mean reading "
         "change from the unloaded array to the whole array at the sensor's full-scale "
-        "pressure (96 DN on vhdta128, 3639 codes on the 16x16), and the frame is rounded "
+        f"pressure ({scales['vhdta128']:.0f} DN on vhdta128, {scales['16x16']:.0f} codes on "
+        "the 16x16), and the frame is rounded "
         "and clipped to the output's range. The 16x16 array is the `resistive16` preset "
         "(2 mm pitch) with its contacts solved on 0.5 mm cells.\n",
         "Labels come from the physics, never from the image. Contact type, by indenter "

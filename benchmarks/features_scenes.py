@@ -7,12 +7,14 @@ class and placement) and from the solved contact on the sensor's load grid, neve
 image. `LABEL_RULES` states each rule; the Markdown of the benchmark prints it.
 
 Solved frames are cached in ``benchmarks/.cache`` (ignored by git): a cache file is named
-by the sensor, the number of frames per indenter, the seed and `VERSION`.
+by the sensor (its name and a digest of its whole model, so that a changed preset is never
+read from an old file), the number of frames per indenter, the seed and `VERSION`.
 """
 
 from __future__ import annotations
 
 import gzip
+import hashlib
 import math
 import pickle
 from dataclasses import dataclass, replace
@@ -394,7 +396,9 @@ def simulate(sensor_name: str, per_indenter: int, seed: int) -> list[Labelled]:
 
 def load(sensor_name: str, per_indenter: int, seed: int) -> list[Labelled]:
     """`simulate`, through the cache."""
-    path = CACHE / f"features-{sensor_name}-{per_indenter}-{seed}-v{VERSION}.pkl.gz"
+    model = hashlib.sha256(repr(benchmark_sensor(sensor_name)).encode()).hexdigest()[:8]
+    name = f"features-{sensor_name}-{model}-{per_indenter}-{seed}-v{VERSION}.pkl.gz"
+    path = CACHE / name
     if path.exists():
         with gzip.open(path, "rb") as stream:
             return pickle.load(stream)

@@ -36,7 +36,10 @@ def _pressure_centroid(sensor, frame):
         ("edge", 5.0, {}, "line"),
         ("cylinder", 5.0, {}, "line"),
         ("box-edge", 5.0, {}, "line"),
-        ("box-corner", 5.0, {}, "corner"),  # a 3.3 mm rounded triangle: three lobes
+        # a 4.1-4.4 mm rounded triangle: three lobes. At 4-5 N (3.3-3.6 mm) the saturated
+        # image's half-peak outline measures within 0.01 mm of the point-size limit for
+        # flat-topped images and reads as a point (the benchmark counts such frames)
+        ("box-corner", 8.0, {}, "corner"),
     ],
 )
 def test_contact_type_of_simulated_frames(vhdta, name, force, parameters, expected):

@@ -37,7 +37,7 @@ def calibrate(
     sensor: TactileSensor,
     *,
     pressures: Any = None,
-    n_levels: int = 21,
+    n_levels: int | None = None,
     repeats: int = 8,
     rng: Any = None,
     min_response: float = 0.1,
@@ -51,8 +51,9 @@ def calibrate(
     pressures : array_like, optional
         Plate pressures [Pa], increasing from 0; default `n_levels` evenly spaced from 0
         to the sensor's `full_scale`.
-    n_levels : int, default 21
-        Number of pressures when `pressures` is not given, >= 4.
+    n_levels : int, optional
+        Number of pressures when `pressures` is not given, >= 4; default the sensor's
+        `calibration_levels` (21, or 81 for the 8-bit camera of vhdta128).
     repeats : int, default 8
         Frames averaged per pressure (with noise on); 1 is used without noise.
     rng : numpy.random.Generator or int, optional
@@ -112,6 +113,8 @@ def calibrate(
             f"`sensor` {sensor.name!r} is photoelastic: a flat plate makes no fringes and its "
             "load is fitted to whole fringe maps (fit_load_scale), not calibrated per taxel"
         )
+    if n_levels is None:
+        n_levels = sensor.calibration_levels
     levels = _levels(sensor, pressures, n_levels)
     if isinstance(repeats, bool) or int(repeats) != repeats or repeats < 1:
         raise ValueError(f"`repeats` must be a positive integer, got {repeats!r}")

@@ -132,11 +132,14 @@ class Calibration:
 
     @cached_property
     def _rest_slope(self) -> np.ndarray:
-        """Pressure per unit reading at no load, per taxel [Pa per raw unit]; 0 if flat."""
+        """Pressure per unit reading at no load, per taxel [Pa per raw unit]; 0 if flat.
+
+        The secant over the first 5 % of the range at least: the slope of one short
+        segment between two noisy (or 8-bit) knots could be off many times over.
+        """
         knots = self.direction * self.readings.reshape(len(self.pressures), -1)
-        slope = self._response.c[2, 0]  # dr/dp of the first segment at p = 0
-        secant = (knots[1] - knots[0]) / (self.pressures[1] - self.pressures[0])
-        slope = np.where(slope > 0, slope, secant)
+        span = max(1, int(np.searchsorted(self.pressures, 0.05 * self.pressures[-1])))
+        slope = (knots[span] - knots[0]) / (self.pressures[span] - self.pressures[0])
         return np.divide(1.0, slope, out=np.zeros_like(slope), where=slope > 0)
 
     def felt_pressure(self, raw: Any, *, clip: bool = False) -> np.ndarray:

@@ -83,8 +83,9 @@ def calibration_error(
     calibration : Calibration
         Its calibration (see `calibrate`).
     pressures : array_like, optional
-        Plate pressures to test [Pa], in [0, full_scale]; default 41 evenly spaced, so
-        that half of them fall between the calibration's 21 default pressures.
+        Plate pressures to test [Pa], in [0, full_scale]; default the calibration's own
+        pressures and the quarter, half and three-quarter points between each two of
+        them, so that three of every four fall where the map interpolates.
     rng : numpy.random.Generator or int, optional
         Switches the sensor's noise on; None tests noise-free frames.
 
@@ -104,7 +105,9 @@ def calibration_error(
         raise TypeError(f"`sensor` must be a TactileSensor, got {sensor!r}")
     check_calibration(calibration, sensor)
     if pressures is None:
-        levels = np.linspace(0.0, sensor.full_scale, 41)
+        knots = calibration.pressures
+        quarters = np.interp(np.arange(4 * len(knots) - 3) / 4, np.arange(len(knots)), knots)
+        levels = quarters[quarters <= sensor.full_scale]
     else:
         levels = as_finite_array("pressures", pressures, ndim=1)
         if levels.size == 0 or np.any(levels < 0) or np.any(levels > sensor.full_scale):

@@ -94,6 +94,9 @@ class TactileSensor:
         For transducers that sense strain (capacitive): the constrained modulus of the
         sensing cell's dielectric [Pa], whose strain is sigma_z / cell_modulus. None uses the
         cover's own strain eps_z at the sensing depth (the chapter's model).
+    calibration_levels : int, default 21
+        Flat-plate pressures `calibrate` uses by default, >= 4: more where the output's
+        steps are coarse (an 8-bit camera), so that the plates straddle each step.
     description : str
         One line for reports.
     """
@@ -107,6 +110,7 @@ class TactileSensor:
     full_scale: float = 200e3
     oversampling: int = 1
     cell_modulus: float | None = None
+    calibration_levels: int = 21
     description: str = ""
 
     def __post_init__(self) -> None:
@@ -120,6 +124,9 @@ class TactileSensor:
         check_positive("full_scale", self.full_scale)
         if self.cell_modulus is not None:
             check_positive("cell_modulus", self.cell_modulus)
+        levels = self.calibration_levels
+        if isinstance(levels, bool) or not isinstance(levels, int) or levels < 4:
+            raise ValueError(f"`calibration_levels` must be an integer >= 4, got {levels!r}")
         self.geometry.load_grid(self.oversampling)  # validates the oversampling
 
     # ----------------------------------------------------------------- geometry and units

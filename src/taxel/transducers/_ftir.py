@@ -215,9 +215,12 @@ class FtirTransducer:
         Textured membrane (grey levels) or flat (binary contact).
     contact_modulus : float, default 1.33e6
         E* of the membrane on glass [Pa] (E = 1 MPa, nu = 0.5).
-    rms_slope : float, default 0.2
-        RMS slope of the texture [-]. With the default E* the image saturates near 400 kPa,
-        the seed sensor's working pressure of 60 psi.
+    rms_slope : float, default 0.35
+        RMS slope of the texture [-]. With the default E* the image saturates near 650 kPa,
+        1.6 times the seed sensor's working pressure of 60 psi (414 kPa), so that the grey
+        level still grows by a step per 2.5 % of 60 psi there; at 0.2 it would saturate at
+        372 kPa and read every pressure above it alike. A larger slope would grade the top
+        of the range more finely but dim every contact (fewer levels for the features).
     dark_level, bright_level, conversion_gain, read_noise, bits
         The camera, as in `camera_image`.
     scratch_count : int, default 0
@@ -232,11 +235,11 @@ class FtirTransducer:
     >>> sensor = FtirTransducer()
     >>> pressure = np.array([[0.0, 2e4], [1e5, 1e6]])
     >>> sensor.respond(pressure).tolist()
-    [[24, 35], [77, 120]]
+    [[24, 31], [56, 120]]
     >>> np.round(sensor.invert(sensor.respond(pressure)) / 1e3).tolist()  # kPa, 8-bit steps
-    [[0.0, 19.0], [101.0, 372.0]]
+    [[0.0, 21.0], [100.0, 650.0]]
     >>> round(sensor.saturation_pressure / 1e3)  # 1 MPa reads as the saturation pressure
-    372
+    650
     >>> FtirTransducer(textured=False).respond(pressure).tolist()  # binary contact image
     [[24, 120], [120, 120]]
     """
@@ -250,7 +253,7 @@ class FtirTransducer:
     ray_angle: float = _SIXTY_DEGREES
     textured: bool = True
     contact_modulus: float = 1.33e6
-    rms_slope: float = 0.2
+    rms_slope: float = 0.35
     dark_level: float = 24.0
     bright_level: float = 120.0
     conversion_gain: float = 0.025
