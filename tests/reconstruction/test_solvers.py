@@ -66,6 +66,31 @@ def test_dense_and_fast_solutions_agree(order, oversampling, rule):
     assert dense.residual_norm == pytest.approx(fast.residual_norm, rel=1e-4, abs=1e-6)
 
 
+@pytest.mark.parametrize("oversampling", [1, 2, 3])
+@pytest.mark.parametrize("order", [0, 1, 2])
+@pytest.mark.parametrize("representation", ["dense", "fast"])
+def test_cell_variance_is_the_diagonal_of_the_solution_covariance(
+    order, oversampling, representation
+):
+    spec = SMALL.with_changes(shape=(5, 6), oversampling=oversampling)
+    solver = TikhonovSolver(spec, order=order, boundary="reflect", representation=representation)
+    lam = 0.03
+    # the solution map is linear: its columns are the solutions of unit frames
+    units = np.eye(30).reshape(30, 5, 6)
+    columns = solver.solve(units, regularization=lam).pressure
+    expected = (columns**2).sum(axis=0)
+    factors = solver.filter_factors(np.array([lam]))[0]
+    variance = solver.spectrum.cell_variance(factors)
+    assert np.allclose(variance, expected, rtol=1e-9)
+
+
+def test_corner_cells_of_a_thick_cover_are_noisier():
+    # the low modes a thick cover passes peak at the edges of the reflective model
+    solver = TikhonovSolver(STEEP, order=0, representation="fast")
+    variance = solver.spectrum.cell_variance(solver.filter_factors(np.array([0.05]))[0])
+    assert variance[0, 0] > 1.5 * variance[12, 12] and variance[0, 12] > 1.2 * variance[12, 12]
+
+
 @pytest.mark.parametrize("order", [0, 1, 2])
 def test_solution_is_the_minimizer(order):
     solver = TikhonovSolver(STEEP.with_changes(shape=(8, 8), oversampling=2), order=order)

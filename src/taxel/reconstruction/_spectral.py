@@ -33,6 +33,32 @@ def _idct(values: np.ndarray) -> np.ndarray:
     return fft.idctn(values, norm="ortho", axes=(-2, -1), workers=1)
 
 
+def _slots(index: np.ndarray, coarse: int) -> list[np.ndarray]:
+    """Fine modes folding onto each coarse mode, one (coarse,) array per slot (-1: none)."""
+    slots: list[np.ndarray] = []
+    for fine, target in enumerate(index):
+        if target < 0:
+            continue
+        for slot in slots:
+            if slot[target] < 0:
+                slot[target] = fine
+                break
+        else:
+            slots.append(np.full(coarse, -1))
+            slots[-1][target] = fine
+    return slots
+
+
+def _dct_basis(size: int) -> np.ndarray:
+    """Orthonormal DCT-II basis, shape (size, size): column m is mode m over the cells."""
+    return fft.idct(np.eye(size), norm="ortho", axis=0, workers=1)
+
+
+def _slot_matrix(basis: np.ndarray, slot: np.ndarray) -> np.ndarray:
+    """(cells, coarse): the fine mode of `slot` over the cells, 0 where the slot is empty."""
+    return np.where(slot[None, :] >= 0, basis[:, np.maximum(slot, 0)], 0.0)
+
+
 class Spectrum:
     """Common interface of the factorizations (see the module docstring).
 
@@ -80,8 +106,7 @@ class Spectrum:
     def cell_variance(self, factors: np.ndarray) -> np.ndarray:
         """Variance of each load cell of the solution with filter `factors` (r,).
 
-        Per unit variance of white reading noise, shape load_shape; fast factorizations
-        give the mean over the cells everywhere.
+        Per unit variance of white reading noise, shape load_shape.
         """
         raise NotImplementedError
 
@@ -100,6 +125,7 @@ class FastSpectrum(Spectrum):
         self._k = k
         row_index, row_weight = fold_1d(rows, k)
         col_index, col_weight = fold_1d(cols, k)
+        self._row_slots, self._col_slots = _slots(row_index, rows), _slots(col_index, cols)
         weight = row_weight[:, None] * col_weight[None, :] * operator.eigenvalues
         valid = (row_index[:, None] >= 0) & (col_index[None, :] >= 0)
         group = np.where(valid, row_index[:, None] * cols + col_index[None, :], 0)
@@ -141,12 +167,29 @@ class FastSpectrum(Spectrum):
         return _idct(fine)
 
     def cell_variance(self, factors: np.ndarray) -> np.ndarray:
-        # coarse DCT coefficients are independent, each fine mode is a multiple of one of
-        # them, and the fine basis is orthonormal: the mean over cells is a sum of squares
+        # x(i, j) = sum over coarse modes mu of f_mu beta_mu s_mu(i, j), with independent unit
+        # beta_mu and s_mu the sum of the fine modes folding onto mu: var = sum_mu s_mu^2.
+        # A fine mode is a (row mode, column mode) pair, so s_mu^2 is separable for each
+        # pair of row slots (a, a') and column slots (b, b'). Near the edges the cosines of
+        # the low modes do not average out: a corner cell has up to 4 times the mean variance.
         full = np.concatenate([np.ones(self.n_free), factors])
-        amplitude = self._expansion.ravel() * full[self._group_flat]
-        cells = self.load_shape[0] * self.load_shape[1]
-        return np.full(self.load_shape, float(np.sum(amplitude**2)) / cells)
+        amplitude = self._expansion * full[self._group]
+        row_basis = _dct_basis(self.load_shape[0])
+        col_basis = _dct_basis(self.load_shape[1])
+        rows = [_slot_matrix(row_basis, slot) for slot in self._row_slots]
+        cols = [_slot_matrix(col_basis, slot) for slot in self._col_slots]
+        parts = [
+            np.where((rs[:, None] >= 0) & (cs[None, :] >= 0), amplitude[rs][:, cs], 0.0)
+            for rs in self._row_slots
+            for cs in self._col_slots
+        ]
+        pairs = [(a, b) for a in range(len(rows)) for b in range(len(cols))]
+        variance = np.zeros(self.load_shape)
+        for first, (a, b) in enumerate(pairs):
+            for second, (c, d) in enumerate(pairs):
+                inner = (parts[first] * parts[second]) @ (cols[b] * cols[d]).T
+                variance += (rows[a] * rows[c]) @ inner
+        return variance
 
     def shifted_solve(self, rhs: np.ndarray, alpha: float, beta: float) -> np.ndarray:
         transformed = _dct(rhs)
