@@ -11,6 +11,7 @@ from taxel.reconstruction import (
     reconstruct,
     solver_for,
 )
+from taxel.reconstruction._support import _component_scores
 
 SMALL = forward_model_preset("resistive16", shape=(12, 12))
 THICK = forward_model_preset("vhdta128", shape=(40, 40))  # d = 3.9 pitches
@@ -134,3 +135,33 @@ def test_through_reconstruct_and_bad_input():
         SupportSolver(SMALL, max_cells=0)
     with pytest.raises(ValueError, match="`refinements` must be >= 0"):
         SupportSolver(SMALL, refinements=-1)
+
+
+def test_component_scores_of_independent_cells():
+    # A^T A diagonal (cells that do not overlap), no ridge: x_i = h_i / e_i with variance
+    # 1 / e_i, so a group's total over its std is sum(h / e) / sqrt(sum(1 / e))
+    eigenvalues = np.array([4.0, 1.0, 9.0, 2.0])
+    rhs = np.array([8.0, -1.0, 3.0, 1.0])
+    labels = np.array([1, 1, 2, 2])
+    scores = _component_scores(np.diag(eigenvalues), rhs, 0.0, labels)
+    expected = [(2.0 - 1.0) / np.sqrt(1 / 4 + 1), (1 / 3 + 0.5) / np.sqrt(1 / 9 + 1 / 2)]
+    assert np.allclose(scores, expected)
+
+
+def test_a_weak_second_contact_far_away_is_kept():
+    # step 5 drops lone components that are weak in the restricted fit, not real ones
+    solver = SupportSolver(THICK)
+    truth = np.zeros(THICK.shape)
+    truth[18:22, 18:22] = 100e3
+    sigma = 0.01 * THICK.full_scale
+    frame = solver.operator.apply(truth) + np.random.default_rng(8).normal(0, sigma, THICK.shape)
+    first = solver.linear.solve(frame)
+    factors = solver.linear.filter_factors(np.atleast_1d(first.regularization))[0]
+    std = float(first.noise_level) * np.sqrt(solver.spectrum.cell_variance(factors))
+    # a real load at (5, 33) whose first estimate just clears the threshold: it stays
+    unit = np.zeros(THICK.shape)
+    unit[5, 33] = 1.0
+    gain = solver.linear.solve(solver.operator.apply(unit), regularization=first.regularization)
+    weak = 1.3 * solver.threshold * std[5, 33] / gain.pressure[5, 33]
+    result = solver.solve(frame + weak * solver.operator.apply(unit))
+    assert result.support[5, 33] and "dropped" not in result.message
