@@ -11,7 +11,7 @@ from taxel.reconstruction import (
     reconstruct,
     solver_for,
 )
-from taxel.reconstruction._support import _component_scores
+from taxel.reconstruction._restricted import component_scores
 
 SMALL = forward_model_preset("resistive16", shape=(12, 12))
 THICK = forward_model_preset("vhdta128", shape=(40, 40))  # d = 3.9 pitches
@@ -143,7 +143,7 @@ def test_component_scores_of_independent_cells():
     eigenvalues = np.array([4.0, 1.0, 9.0, 2.0])
     rhs = np.array([8.0, -1.0, 3.0, 1.0])
     labels = np.array([1, 1, 2, 2])
-    scores = _component_scores(np.diag(eigenvalues), rhs, 0.0, labels)
+    scores = component_scores(np.diag(eigenvalues), rhs, 0.0, labels)
     expected = [(2.0 - 1.0) / np.sqrt(1 / 4 + 1), (1 / 3 + 0.5) / np.sqrt(1 / 9 + 1 / 2)]
     assert np.allclose(scores, expected)
 

@@ -39,6 +39,7 @@ from taxel.reconstruction._reconstruct import (
     reconstruct,
     solver_for,
 )
+from taxel.reconstruction._restricted import nonneg_quadratic
 from taxel.reconstruction._result import ReconstructionResult
 from taxel.reconstruction._shape import ShapeResult, recover_shape
 from taxel.reconstruction._spec import (
@@ -48,7 +49,7 @@ from taxel.reconstruction._spec import (
     forward_model_preset,
     spec_from_sensor,
 )
-from taxel.reconstruction._support import SupportSolver, nonneg_quadratic
+from taxel.reconstruction._support import SupportSolver
 from taxel.reconstruction._tikhonov import TikhonovSolver, estimate_noise
 
 __all__ = [
