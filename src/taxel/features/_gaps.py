@@ -28,6 +28,7 @@ import cv2
 import numpy as np
 
 from taxel.features._image import Prepared
+from taxel.features._moments import binary_moments
 
 __all__ = ["Hole", "HoleReport", "Slot", "SlotReport", "gaps_core"]
 
@@ -233,21 +234,16 @@ def _moments_of_old(
 ) -> tuple[dict, int, int]:
     """Moments of a window's region, taken in the gap test's original, wider window.
 
-    The region, in the window of rows r0:r1 and columns c0:c1 (`bounds`), is placed in
-    the window the gap test was written with (margin 6 taxels plus half the basin's
-    size): the moments' rounding depends on their origin, so the results stay the same
-    bit for bit. Returns the moments and the wider window's corner (row, column).
+    The region, in the window of rows r0:r1 and columns c0:c1 (`bounds`), is measured as
+    if placed in the window the gap test was written with (margin 6 taxels plus half the
+    basin's size): the moments' rounding depends on their origin, so the results stay the
+    same bit for bit. Returns the moments and the wider window's corner (row, column).
     """
-    r0, r1, c0, c1 = bounds
+    r0, _, c0, _ = bounds
     left, top, width, height = cv2.boundingRect(contour)
     margin = _REACH + max(width, height) // 2
-    wide_r0, wide_r1 = max(top - margin, 0), min(top + height + margin, shape[0])
-    wide_c0, wide_c1 = max(left - margin, 0), min(left + width + margin, shape[1])
-    if (wide_r0, wide_r1, wide_c0, wide_c1) != bounds:
-        wide = np.zeros((wide_r1 - wide_r0, wide_c1 - wide_c0), np.uint8)
-        wide[r0 - wide_r0 : r1 - wide_r0, c0 - wide_c0 : c1 - wide_c0] = region
-        region = wide
-    return cv2.moments(region, binaryImage=True), wide_r0, wide_c0
+    wide_r0, wide_c0 = max(top - margin, 0), max(left - margin, 0)
+    return binary_moments(region, r0 - wide_r0, c0 - wide_c0), wide_r0, wide_c0
 
 
 def _measure(

@@ -30,7 +30,7 @@ import numpy as np
 from taxel._validation import check_finite, check_range
 from taxel.features._sensor import cover_blur, cover_depth, hexagonal_resampled, pitch_pair
 
-__all__ = ["Prepared", "contact_box", "prepare"]
+__all__ = ["Prepared", "contact_box", "contact_window", "prepare"]
 
 # Contact thresholds, in units of the smoothed image's noise sigma (k) or of the contrast (f).
 # The baseline is the minimum of the smoothed image, which lies about 3-4 sigma below the
@@ -56,6 +56,8 @@ _FILL_8 = 8 | (1 << 8)
 # MAD of a standard normal, and the noise gain of `x - mean of its 4 neighbours`.
 _MAD = 1.4826
 _LAPLACE_GAIN = math.sqrt(1.25)
+# Images of at most this many taxels are read whole (see `contact_window`).
+_WHOLE_IMAGE = 32 * 32
 
 
 @dataclass(frozen=True)
@@ -150,6 +152,29 @@ def contact_box(prepared: Prepared) -> tuple[int, int, int, int]:
         left, top, width, height = cv2.boundingRect(prepared.mask)
         box = prepared.memo["box"] = (left, top, width, height)
     return box
+
+
+def contact_window(prepared: Prepared, margin: int = 0) -> tuple[slice, slice]:
+    """Rows and columns that hold every contact taxel (internal; kept in ``prepared.memo``).
+
+    The contact's bounding box grown by `margin` taxels (within the image), so that sums,
+    counts, extremes and filters of that reach over the contact can be computed there
+    alone; the whole image when it is small (up to 32 x 32), where cropping costs more
+    than it saves.
+    """
+    window = prepared.memo.get(("window", margin))
+    if window is None:
+        rows, cols = prepared.mask.shape
+        if prepared.mask.size <= _WHOLE_IMAGE:
+            window = (slice(0, rows), slice(0, cols))
+        else:
+            left, top, width, height = contact_box(prepared)
+            window = (
+                slice(max(top - margin, 0), min(top + height + margin, rows)),
+                slice(max(left - margin, 0), min(left + width + margin, cols)),
+            )
+        prepared.memo[("window", margin)] = window
+    return window
 
 
 def component_outlines(

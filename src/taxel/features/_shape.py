@@ -303,7 +303,7 @@ def shape_core(
     region = contact.regions[0]
     compact = region.minor_axis_m >= _COMPACT_RATIO * region.major_axis_m
     if compact and not region.touches_border:
-        half, size, flat, moments = half_region(prepared, main)
+        half, origin, size, flat, moments = half_region(prepared, main)
         smallest = max(point_size, _POINT_PITCHES * pitch)
         if flat:
             limit = smallest + prepared.blur + 0.5 * pitch
@@ -311,7 +311,7 @@ def shape_core(
             limit = math.hypot(smallest, prepared.blur) + 0.5 * pitch
         if size * pitch <= limit:
             return result("point", ramp(limit / (size * pitch), 1.0, 1.3), 0.0, "small contact")
-        three = three_lobes(prepared, half, moments) if size >= _LOBES_TAXELS else 0.0
+        three = three_lobes(prepared, half, moments, origin) if size >= _LOBES_TAXELS else 0.0
         corner = ramp(three, 0.5 * _LOBES, 1.5 * _LOBES)
         if three >= _LOBES:
             return result("corner", corner, corner, "three-lobed compact contact (vertex)")
