@@ -55,14 +55,21 @@ def diameter_test(
     centre_c, centre_r = fit.center_m
     # one taxel per step: the contact's walls are at least 2 taxels thick after smoothing
     steps = np.arange(-_DIAMETER_REACH * fit.radius_m, _DIAMETER_REACH * fit.radius_m, 1.0)
-    cols_at = np.rint(centre_c + _COSINES * steps).astype(int)
-    rows_at = np.rint(centre_r + _SINES * steps).astype(int)
-    # samples off the array read the zero row and column appended to the mask (index -1
-    # wraps to them)
-    np.minimum(np.maximum(cols_at, -1, out=cols_at), shape[1], out=cols_at)
-    np.minimum(np.maximum(rows_at, -1, out=rows_at), shape[0], out=rows_at)
-    padded = cv2.copyMakeBorder(prepared.mask, 0, 1, 0, 1, cv2.BORDER_CONSTANT, value=0)
-    touched = padded[rows_at, cols_at] != 0
+    cols_at = _COSINES * steps
+    cols_at += centre_c
+    rows_at = _SINES * steps
+    rows_at += centre_r
+    # the nearest taxel of each sample, 0 off the array: a remap with whole-number maps
+    # (exact in float32) reads them in one call
+    touched = cv2.remap(
+        prepared.mask,
+        np.rint(cols_at, out=cols_at).astype(np.float32),
+        np.rint(rows_at, out=rows_at).astype(np.float32),
+        cv2.INTER_NEAREST,
+        borderMode=cv2.BORDER_CONSTANT,
+        borderValue=0,
+    )
+    touched = touched != 0
     crossed = touched[:, 1:] != touched[:, :-1]
     middle = steps.size // 2
     before = np.add.reduce(crossed[:, :middle], axis=1)

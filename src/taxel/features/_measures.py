@@ -70,9 +70,14 @@ def half_region(
 
 def band_fits(prepared: Prepared, main: np.ndarray) -> tuple[LineFit, CircleFit, float]:
     """Weighted centre line and circle of a band (taxel units), and its length [taxels]."""
-    # the band's taxels in row-major order, as np.nonzero gives them
+    # the band's taxels in row-major order, as np.nonzero gives them, found in the
+    # contact's window (`main` is 0 outside it)
+    window = contact_window(prepared)
+    main = main[window]
     x, y = cv2.findNonZero(main).reshape(-1, 2).T.astype(float, order="C")
-    weight = prepared.smooth[main.view(bool)] - np.float32(prepared.baseline)
+    x += window[1].start
+    y += window[0].start
+    weight = prepared.smooth[window][main.view(bool)] - np.float32(prepared.baseline)
     np.maximum(weight, 1e-12, out=weight)
     line, circle = fit_line_and_circle(x, y, weight.astype(float))
     along = math.cos(line.angle_rad) * x
