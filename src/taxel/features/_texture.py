@@ -258,7 +258,7 @@ def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Textur
     total = float(power.sum(dtype=np.float64))
     if total <= 0:
         return Texture(n_maxima, mean_height, density, None, None, (0.0,) * _OCTAVES, roughness)
-    sums = np.add.reduceat(power[order].astype(np.float64), starts)[:_OCTAVES]
+    sums = np.add.reduceat(np.take(power, order).astype(np.float64), starts)[:_OCTAVES]
     if empty is not None:
         sums[empty] = 0.0  # an empty band holds nothing
     bands = sums / total
