@@ -27,7 +27,7 @@ from typing import cast
 import cv2
 import numpy as np
 
-from taxel.features._image import Prepared
+from taxel.features._image import WHOLE_IMAGE, Prepared, contact_box
 from taxel.features._moments import binary_moments
 
 __all__ = ["Hole", "HoleReport", "Slot", "SlotReport", "gaps_core"]
@@ -171,21 +171,49 @@ def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
         for f in sorted(_LEVELS, reverse=True)
         if prepared.baseline + f * prepared.contrast > prepared.low
     ] + [prepared.low]
+    # A contact clear of the array's border leaves a ring of non-contact taxels around its
+    # box, which joins every non-contact region reaching out of the box into one whose
+    # outline is the array's border (over half the array: never a basin), as long as no
+    # taxel out of the box is above the level. The outlines can then be traced in the box
+    # grown by 1 alone: the same outlines, but that region's, which is the ring's there.
+    x0, y0, box_width, box_height = contact_box(prepared)
+    ring = (x0 - 1, y0 - 1, box_width + 2, box_height + 2)
+    grown = (slice(y0 - 1, y0 + box_height + 1), slice(x0 - 1, x0 + box_width + 1))
+    inner = (slice(y0, y0 + box_height), slice(x0, x0 + box_width))
+    clear = x0 > 0 and y0 > 0 and x0 + box_width < cols and y0 + box_height < rows
+    clear = clear and rows * cols > WHOLE_IMAGE  # (on small images, cropping costs more)
     for level in levels:
         # the non-contact side at this level, in one comparison (`smooth < level` is
         # `1 - (smooth >= level)`)
-        if level == prepared.low:
-            outside = 1 - prepared.mask
+        origin = (0, 0)
+        if clear and (level == prepared.low or prepared.complete):
+            origin = ring[:2]
+            if level == prepared.low:
+                outside = 1 - prepared.mask[grown]
+            else:
+                outside = (prepared.smooth[grown] < level).view(np.uint8)
         else:
-            outside = (prepared.smooth < level).view(np.uint8)
+            if level == prepared.low:
+                outside = 1 - prepared.mask
+            else:
+                outside = (prepared.smooth < level).view(np.uint8)
+            # (is every taxel above the level in the box?)
+            if clear and outside.size - cv2.countNonZero(outside) == (
+                box_width * box_height - cv2.countNonZero(outside[inner])
+            ):
+                origin, outside = ring[:2], outside[grown]
         # two-level hierarchy: every region's outer outline is at the top, however nested
-        contours, hierarchy = cv2.findContours(outside, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
+        contours, hierarchy = cv2.findContours(
+            outside, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE, offset=origin
+        )
         sized = []
         parents = hierarchy[0][:, 3].tolist() if contours else []
         for contour, parent in zip(contours, parents, strict=True):
             points = contour.shape[0]
             if parent >= 0 or points < 3:
                 continue
+            if origin != (0, 0) and cv2.boundingRect(contour) == ring:
+                continue  # the ring around the box: the background's outline, cut short
             # the outline runs through the outer taxels' centres: add half a taxel all round
             # (`contourArea` is the moments' m00, without building them all)
             area = cv2.contourArea(contour) + 0.5 * points

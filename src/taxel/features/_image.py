@@ -30,7 +30,7 @@ import numpy as np
 from taxel._validation import check_finite, check_range
 from taxel.features._sensor import cover_blur, cover_depth, hexagonal_resampled, pitch_pair
 
-__all__ = ["Prepared", "contact_box", "contact_window", "prepare"]
+__all__ = ["WHOLE_IMAGE", "Prepared", "contact_box", "contact_window", "prepare"]
 
 # Contact thresholds, in units of the smoothed image's noise sigma (k) or of the contrast (f).
 # The baseline is the minimum of the smoothed image, which lies about 3-4 sigma below the
@@ -57,7 +57,7 @@ _FILL_8 = 8 | (1 << 8)
 _MAD = 1.4826
 _LAPLACE_GAIN = math.sqrt(1.25)
 # Images of at most this many taxels are read whole (see `contact_window`).
-_WHOLE_IMAGE = 32 * 32
+WHOLE_IMAGE = 32 * 32
 
 
 @dataclass(frozen=True)
@@ -105,6 +105,9 @@ class Prepared:
     memo : dict
         Intermediates one feature computes and another reuses (image moments, the
         contact's bounding box).
+    complete : bool
+        Whether every taxel of `smooth` at or above `low` is a contact taxel (no weaker
+        region was left out of `mask`).
     """
 
     image: np.ndarray
@@ -128,6 +131,7 @@ class Prepared:
     memo: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
     blur: float = 0.0
     cover_depth: float = 0.0
+    complete: bool = False
 
     @property
     def present(self) -> bool:
@@ -165,7 +169,7 @@ def contact_window(prepared: Prepared, margin: int = 0) -> tuple[slice, slice]:
     window = prepared.memo.get(("window", margin))
     if window is None:
         rows, cols = prepared.mask.shape
-        if prepared.mask.size <= _WHOLE_IMAGE:
+        if prepared.mask.size <= WHOLE_IMAGE:
             window = (slice(0, rows), slice(0, cols))
         else:
             left, top, width, height = contact_box(prepared)
@@ -359,6 +363,7 @@ def prepare(
             mask=candidates,
             labels=candidates,
             n_regions=1,
+            complete=True,
             outlines=cast(tuple[np.ndarray, ...], outlines),  # cv2 gives a tuple
             **common,
         )

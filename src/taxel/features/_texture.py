@@ -195,16 +195,12 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     points = points.reshape(-1, 2)
     point_rows, point_cols = points[:, 1], points[:, 0]
     heights = smooth[point_rows, point_cols]
-    if points.shape[0] > 1:
-        # a plateau of equal values is one maximum, not many: one taxel per connected
-        # plateau, in the order of the plateaus' labels (which sets the rounding of the
-        # mean height); two maxima touch only where one equals a neighbour, so without
-        # such a tie each maximum is its own plateau and sorting by label is enough
-        labels = cv2.connectedComponents(peaks)[1]
-        if np.count_nonzero(around[point_rows, point_cols] == heights):
-            points = _first_of_each(points, labels)
-        else:
-            points = points[np.argsort(labels[point_rows, point_cols])]
+    # a plateau of equal values is one maximum, not many: one taxel per connected plateau,
+    # the first in the order of the plateaus' labels; two maxima touch only where one
+    # equals a neighbour, so without such a tie each maximum is its own plateau
+    tied = points.shape[0] > 1 and np.count_nonzero(around[point_rows, point_cols] == heights)
+    if tied:
+        points = _first_of_each(points, cv2.connectedComponents(peaks)[1])
         point_rows, point_cols = points[:, 1], points[:, 0]
         heights = smooth[point_rows, point_cols]
     # the ring and the neighbours are read in a copy padded by replication, as clipping
@@ -215,8 +211,8 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     padded = cv2.copyMakeBorder(smooth, pad, pad, pad, pad, cv2.BORDER_REPLICATE).ravel()
     centres = ((point_rows + pad) * (smooth.shape[1] + 2 * pad) + (point_cols + pad))[:, None]
     ring = np.take(padded, centres + ring_offsets)
-    high = heights > np.maximum.reduce(ring, axis=1) + margin
-    if not np.count_nonzero(high):
+    high = np.flatnonzero(heights > np.maximum.reduce(ring, axis=1) + margin)
+    if not high.size:
         return 0, 0.0
     # principal curvatures by central differences one sigma each way, on the points that
     # stand above their ring
@@ -230,7 +226,14 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     count = int(np.count_nonzero(peaked))
     if not count:
         return 0, 0.0
-    return count, float(heights[peaked].mean()) - prepared.baseline
+    heights = heights[peaked]
+    if count > 1 and not tied:
+        # the mean height sums the high points in the order of their plateaus' labels (the
+        # rounding depends on it); labelled only now that few points are left
+        chosen = high[peaked]
+        labels = cv2.connectedComponents(peaks)[1][point_rows[chosen], point_cols[chosen]]
+        heights = heights[np.argsort(labels)]
+    return count, float(heights.mean()) - prepared.baseline
 
 
 def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Texture:
