@@ -56,7 +56,7 @@ import numpy as np
 
 from taxel._validation import check_positive
 from taxel.features._contact import Contact, contact_regions
-from taxel.features._fitting import CircleFit, LineFit, fit_line_and_circle
+from taxel.features._fitting import CircleFit, LineFit, centred, fit_line_and_circle
 from taxel.features._gaps import gaps_core
 from taxel.features._image import Prepared, prepare
 from taxel.features._measures import (
@@ -209,7 +209,8 @@ def _free_outline(
     straight = True
     best_corner = 0.0
     for x, y in chains:
-        single, extent = line_spread(x, y)
+        points = centred(x, y)  # shared by the line, the arms and the circle
+        single, extent = line_spread(x, y, points)
         allowed = tolerance(extent)
         if single <= allowed and extent >= _STRAIGHT_TAXELS:
             continue  # straight: no vertex, no curve
@@ -217,10 +218,10 @@ def _free_outline(
             straight = False  # too short to tell straight from curved
             continue
         straight = False
-        arms = two_arms(x, y)
+        arms = two_arms(x, y, points)
         if not bends(arms):
             continue  # the corner score is 0 whatever the circle, and no corner is found
-        round_spread = circle_spread(x, y)
+        round_spread = circle_spread(x, y, points)
         corner = corner_score(min(single, round_spread), arms)
         # a vertex: two straight arms, which fit better than one circle (a curved edge,
         # such as a hole cut by the array's corner, is fitted as well by a circle)
