@@ -27,32 +27,27 @@ from typing import cast
 import cv2
 import numpy as np
 
-from taxel.features._image import WHOLE_IMAGE, Prepared, contact_box
+from taxel.features._basins import MIN_GAP_AREA, SLOT_BORDER_WIDTHS, SLOT_ELONGATION, basins
+from taxel.features._image import Prepared
 from taxel.features._moments import binary_moments
 
 __all__ = ["Hole", "HoleReport", "Slot", "SlotReport", "gaps_core"]
 
-# Levels, besides the contact threshold, at which basins are searched [fraction of contrast].
-_LEVELS = (0.25, 0.5)
 # A basin holds a gap when its bottom lies below this fraction of the surrounding level.
 _DIP = 0.5
 # A gap lies in a face: at least half the ring 2-6 taxels around it presses as clearly as a
 # contact's seed (see `prepare`). Not so in the noisy fringe of a weak contact, where noise
 # alone can enclose a dark patch.
 _FACE = 0.5
-# Smallest gap considered: a disk of one taxel's radius at the half level [taxels^2].
-_MIN_GAP_AREA = math.pi
 # A hole is round: its equivalent-ellipse axes within 2:1, and its area at most 1.9 times the
 # largest inscribed disk (a disk gives ~1.2 on a grid; the irregular valleys between the
 # bumps of a texture give far more).
 _HOLE_AXIS_RATIO = 0.5
 _HOLE_FILL = 1.9
-# A slot is at least 2.5 times as long as it is wide (shorter: a hole or a notch), has
-# parallel walls (area >= 0.6 of length times its widest span; a wedge-shaped gap gives
-# ~0.5) and runs off the array only at its ends (border taxels <= 2.5 widths).
-_SLOT_ELONGATION = 2.5
+# A slot is at least 2.5 times as long as it is wide and runs off the array only at its
+# ends (see `taxel.features._basins`), and has parallel walls (area >= 0.6 of length times
+# its widest span; a wedge-shaped gap gives ~0.5).
 _SLOT_PARALLEL = 0.6
-_SLOT_BORDER_WIDTHS = 2.5
 # In a texture (many separate high points) the dark basins between them are the valleys of
 # the surface, not missing material; they are holes only when they make a perforated sheet:
 # 3 or more holes of equal size (radii within 15 %, as punched) in an evenly pressed sheet
@@ -60,9 +55,6 @@ _SLOT_BORDER_WIDTHS = 2.5
 _SHEET_HOLES = 3
 _SHEET_SPREAD = 0.15
 _SHEET_EVENNESS = 0.5
-# At most this many basins are measured per level, largest first (a texture has hundreds of
-# tiny ones; the gaps an object's shape makes are among the largest).
-_MAX_BASINS = 24
 # A hole must be seen all round: a gap closer to the array's border than the cover is deep
 # (and than 2 taxels) cannot be told from a notch, since its wall on that side is blurred
 # into the array's edge.
@@ -152,93 +144,6 @@ class SlotReport:
     items: tuple[Slot, ...]
 
 
-def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
-    """Outer outlines of the non-contact regions at each level that may hold a gap.
-
-    Cheap tests on the outline alone come first: a basin must hold at least a taxel's
-    disk, and the disk of the cover's blur (a narrower gap is filled in by the blur and
-    cannot dip to half its surroundings), and at most half the array (more is the free
-    space around a contact); one
-    that reaches the array's border can only be a slot running off it at its ends: long
-    (>= 2.5 widths) and meeting the border over no more than 2.5 widths.
-    """
-    rows, cols = prepared.image.shape
-    limit = 0.5 * rows * cols
-    smallest = max(_MIN_GAP_AREA, math.pi * (0.5 * prepared.blur / prepared.mean_pitch) ** 2)
-    found = []
-    levels = [
-        prepared.baseline + f * prepared.contrast
-        for f in sorted(_LEVELS, reverse=True)
-        if prepared.baseline + f * prepared.contrast > prepared.low
-    ] + [prepared.low]
-    # A contact clear of the array's border leaves a ring of non-contact taxels around its
-    # box, which joins every non-contact region reaching out of the box into one whose
-    # outline is the array's border (over half the array: never a basin), as long as no
-    # taxel out of the box is above the level. The outlines can then be traced in the box
-    # grown by 1 alone: the same outlines, but that region's, which is the ring's there.
-    x0, y0, box_width, box_height = contact_box(prepared)
-    ring = (x0 - 1, y0 - 1, box_width + 2, box_height + 2)
-    grown = (slice(y0 - 1, y0 + box_height + 1), slice(x0 - 1, x0 + box_width + 1))
-    inner = (slice(y0, y0 + box_height), slice(x0, x0 + box_width))
-    clear = x0 > 0 and y0 > 0 and x0 + box_width < cols and y0 + box_height < rows
-    clear = clear and rows * cols > WHOLE_IMAGE  # (on small images, cropping costs more)
-    for level in levels:
-        # the non-contact side at this level, in one comparison (`smooth < level` is
-        # `1 - (smooth >= level)`)
-        origin = (0, 0)
-        if clear and (level == prepared.low or prepared.complete):
-            origin = ring[:2]
-            if level == prepared.low:
-                outside = 1 - prepared.mask[grown]
-            else:
-                outside = (prepared.smooth[grown] < level).view(np.uint8)
-        else:
-            if level == prepared.low:
-                outside = 1 - prepared.mask
-            else:
-                outside = (prepared.smooth < level).view(np.uint8)
-            # (is every taxel above the level in the box?)
-            if clear and outside.size - cv2.countNonZero(outside) == (
-                box_width * box_height - cv2.countNonZero(outside[inner])
-            ):
-                origin, outside = ring[:2], outside[grown]
-        # two-level hierarchy: every region's outer outline is at the top, however nested
-        contours, hierarchy = cv2.findContours(
-            outside, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE, offset=origin
-        )
-        sized = []
-        parents = hierarchy[0][:, 3].tolist() if contours else []
-        for contour, parent in zip(contours, parents, strict=True):
-            points = contour.shape[0]
-            if parent >= 0 or points < 3:
-                continue
-            if origin != (0, 0) and cv2.boundingRect(contour) == ring:
-                continue  # the ring around the box: the background's outline, cut short
-            # the outline runs through the outer taxels' centres: add half a taxel all round
-            # (`contourArea` is the moments' m00, without building them all)
-            area = cv2.contourArea(contour) + 0.5 * points
-            if area < smallest or area > limit:
-                continue
-            left, top, box_width, box_height = cv2.boundingRect(contour)
-            if left == 0 or top == 0 or left + box_width == cols or top + box_height == rows:
-                moments = cv2.moments(contour)
-                count = max(moments["m00"], 1e-9)
-                var_x, var_y = moments["mu20"] / count, moments["mu02"] / count
-                spread = math.hypot((var_x - var_y) / 2, moments["mu11"] / count)
-                length = math.sqrt(12.0 * ((var_x + var_y) / 2 + spread)) + 1.0
-                width = area / length
-                if length < _SLOT_ELONGATION * width:
-                    continue
-                # outline points on the array's border: all but those strictly inside it
-                run = points - cv2.countNonZero(cv2.inRange(contour, (1, 1), (cols - 2, rows - 2)))
-                if run > _SLOT_BORDER_WIDTHS * width + 2:
-                    continue
-            sized.append((area, contour))
-        sized.sort(key=lambda item: -item[0])
-        found += [(contour, level) for _, contour in sized[:_MAX_BASINS]]
-    return found
-
-
 def _reaches_border(box: Sequence[int], r0: int, c0: int, shape: tuple[int, int]) -> bool:
     """Whether a region touches the array's border, from its bounding box in a window.
 
@@ -323,7 +228,7 @@ def _measure(
     moments, origin_r, origin_c = _moments_of_old(region, (r0, r1, c0, c1), contour, shape)
     area = moments["m00"]
     where = (slice(r0, r1), slice(c0, c1))
-    if area < _MIN_GAP_AREA:
+    if area < MIN_GAP_AREA:
         return None, where, region, evenness
     row_pitch, col_pitch = prepared.pitch
     pitch = math.sqrt(row_pitch * col_pitch)
@@ -354,7 +259,7 @@ def _measure(
     length = math.sqrt(12.0 * major)
     slot_width = gap_area / length
     span = 2.0 * (inradius + 0.5) * pitch
-    if length < _SLOT_ELONGATION * slot_width or gap_area < _SLOT_PARALLEL * length * span:
+    if length < SLOT_ELONGATION * slot_width or gap_area < _SLOT_PARALLEL * length * span:
         return None, where, region, evenness
     if border:
         on_border = int(
@@ -363,7 +268,7 @@ def _measure(
             + region[:, 0].sum() * (c0 == 0)
             + region[:, -1].sum() * (c1 == cols)
         )
-        if on_border * pitch > _SLOT_BORDER_WIDTHS * slot_width:
+        if on_border * pitch > SLOT_BORDER_WIDTHS * slot_width:
             return None, where, region, evenness
     slot = Slot((mean_r, mean_c), centre_m, angle, slot_width, length, bool(border))
     return slot, where, region, evenness
@@ -394,7 +299,7 @@ def gaps_core(
     if not prepared.present:
         return holes, slots, explained
     marked = False  # whether `explained` holds a gap yet
-    for contour, level in _basins(prepared):
+    for contour, level in basins(prepared):
         if marked:  # a basin already explained (at a higher level) is done
             moments = cv2.moments(contour)
             if moments["m00"] > 0:

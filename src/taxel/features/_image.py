@@ -105,9 +105,9 @@ class Prepared:
     memo : dict
         Intermediates one feature computes and another reuses (image moments, the
         contact's bounding box).
-    complete : bool
-        Whether every taxel of `smooth` at or above `low` is a contact taxel (no weaker
-        region was left out of `mask`).
+    left_out : float
+        Largest value of `smooth` out of the contact, or a bound it stays under: `low`
+        when no region above `low` was left out of `mask` (+inf when not known).
     """
 
     image: np.ndarray
@@ -131,7 +131,7 @@ class Prepared:
     memo: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
     blur: float = 0.0
     cover_depth: float = 0.0
-    complete: bool = False
+    left_out: float = math.inf
 
     @property
     def present(self) -> bool:
@@ -363,7 +363,7 @@ def prepare(
             mask=candidates,
             labels=candidates,
             n_regions=1,
-            complete=True,
+            left_out=low,
             outlines=cast(tuple[np.ndarray, ...], outlines),  # cv2 gives a tuple
             **common,
         )
@@ -375,7 +375,11 @@ def prepare(
     region = np.ascontiguousarray(filled[1:-1, 1:-1])
     if cv2.countNonZero(seeds & region) == cv2.countNonZero(seeds):
         found = component_outlines(region, outlines, hierarchy)
-        return Prepared(mask=region, labels=region, n_regions=1, outlines=found, **common)
+        # the regions left out are the other candidates (the rest lies under `low`)
+        left_out = cv2.minMaxLoc(smooth, candidates ^ region)[1]
+        return Prepared(
+            mask=region, labels=region, n_regions=1, outlines=found, left_out=left_out, **common
+        )
     count, labels = cv2.connectedComponents(candidates, connectivity=8, ltype=cv2.CV_32S)
     seeded = np.bincount(labels[seeds.view(bool)], minlength=count) > 0
     seeded[0] = False
