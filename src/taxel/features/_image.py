@@ -30,7 +30,7 @@ import numpy as np
 from taxel._validation import check_finite, check_range
 from taxel.features._sensor import cover_blur, cover_depth, hexagonal_resampled, pitch_pair
 
-__all__ = ["WHOLE_IMAGE", "Prepared", "contact_box", "contact_window", "prepare"]
+__all__ = ["WHOLE_IMAGE", "Prepared", "contact_area", "contact_box", "contact_window", "prepare"]
 
 # Contact thresholds, in units of the smoothed image's noise sigma (k) or of the contrast (f).
 # The baseline is the minimum of the smoothed image, which lies about 3-4 sigma below the
@@ -60,9 +60,12 @@ _LAPLACE_GAIN = math.sqrt(1.25)
 WHOLE_IMAGE = 32 * 32
 
 
-@dataclass(frozen=True)
+@dataclass(eq=False)
 class Prepared:
     """A validated tactile image with its smoothed version and contact mask (internal).
+
+    Read-only by convention: not frozen, since a frozen dataclass sets each of its fields
+    through ``object.__setattr__`` and costs microseconds to build.
 
     Attributes
     ----------
@@ -147,6 +150,15 @@ class Prepared:
     def mean_pitch(self) -> float:
         """Geometric mean of the row and column pitch [m]."""
         return math.sqrt(self.taxel_area)
+
+
+def contact_area(prepared: Prepared) -> int:
+    """Number of contact taxels (internal; the binary moments' m00 when they are known)."""
+    moments = prepared.memo.get("moments")
+    if moments is not None:
+        return int(moments[0]["m00"])
+    rows, cols = contact_window(prepared)
+    return cv2.countNonZero(prepared.mask[rows, cols])
 
 
 def contact_box(prepared: Prepared) -> tuple[int, int, int, int]:
@@ -240,11 +252,12 @@ def laplacian_residual(image: np.ndarray, step: int = 1) -> np.ndarray:
 
 def noise_from_residual(residual: np.ndarray) -> float:
     """Noise sigma from Laplacian residuals (any shape): 1.4826 MAD / sqrt(1.25)."""
-    values = np.abs(residual).ravel()
+    values = np.abs(residual).ravel()  # a new array: partitioned in place below
     if values.size == 0:
         return 0.0
     middle = values.size // 2
-    return _MAD * float(np.partition(values, middle)[middle]) / _LAPLACE_GAIN
+    values.partition(middle)
+    return _MAD * float(values[middle]) / _LAPLACE_GAIN
 
 
 def _noise_sigma(residual: np.ndarray) -> float:

@@ -11,7 +11,7 @@ import cv2
 import numpy as np
 
 from taxel._validation import as_finite_array
-from taxel.features._image import Prepared, contact_window, prepare
+from taxel.features._image import Prepared, contact_area, contact_window, prepare
 
 __all__ = ["ContactPlane", "contact_plane", "plane_core"]
 
@@ -85,7 +85,7 @@ def plane_core(
     hull_area = float(cv2.contourArea(hull)) if hull is not None else 0.0
     perimeter = cv2.arcLength(hull, True) if hull is not None else 0.0
     # a taxel is a unit square: the hull through taxel centres misses half a taxel all round
-    area = float(cv2.countNonZero(mask))
+    area = float(contact_area(prepared))
     fill = min(area / (hull_area + 0.5 * perimeter + 1), 1.0)
     normal = tilt = rms = None
     if depth is not None:

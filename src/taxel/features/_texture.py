@@ -14,6 +14,7 @@ from taxel._validation import check_range
 from taxel.features._fitting import dot
 from taxel.features._image import (
     Prepared,
+    contact_area,
     contact_box,
     contact_window,
     noise_from_residual,
@@ -178,8 +179,15 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     lowest = cv2.erode(smooth, _square(2 * math.ceil(radius) + 1))
     raw_noise = prepared.raw_noise
     if prepared.residual is not None:
+        # the residual's rows and columns that fall in the contact's window (row i of the
+        # residual is row 1 + i * step of the image, column j is column 1 + j)
         step = prepared.residual_step
-        inside = prepared.residual[prepared.mask[1:-1:step, 1:-1].view(bool)]
+        window_rows, window_cols = contact_window(prepared)
+        first, last = -((1 - window_rows.start) // step), -((1 - window_rows.stop) // step)
+        first, left, right = max(first, 0), max(window_cols.start - 1, 0), window_cols.stop - 1
+        residual = prepared.residual[first:last, left:right]
+        on_rows = prepared.mask[1 + first * step :: step, 1 + left : 1 + right]
+        inside = residual[on_rows[: residual.shape[0], : residual.shape[1]].view(bool)]
         raw_noise = max(raw_noise, noise_from_residual(inside[::4]))
     # white noise of sigma n leaves n / (2 sqrt(pi) sigma) after a Gaussian of sigma
     noise = raw_noise / (2.0 * math.sqrt(math.pi) * sigma)
@@ -241,11 +249,10 @@ def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Textur
     if not prepared.present:
         return Texture(0, 0.0, 0.0, None, None, (0.0,) * _OCTAVES, 0.0)
     n_maxima, mean_height = high_points(prepared, sigma=sigma)
-    window = contact_window(prepared)
-    mask = prepared.mask[window]
-    area = float(cv2.countNonZero(mask)) * prepared.taxel_area
+    area = float(contact_area(prepared)) * prepared.taxel_area
     density = n_maxima / area
-    mean, deviation = cv2.meanStdDev(prepared.smooth[window], mask=mask)
+    window = contact_window(prepared)
+    mean, deviation = cv2.meanStdDev(prepared.smooth[window], mask=prepared.mask[window])
     above = float(mean[0, 0]) - prepared.baseline
     roughness = float(deviation[0, 0]) / above if above > 0 else 0.0
     # ripple: the whole image minus its mean, Hann-windowed (the seed measures texture over
