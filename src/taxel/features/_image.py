@@ -382,17 +382,18 @@ def prepare(
         )
     # several candidate regions (a contact and specks of noise, scratches), usually one
     # seeded: the peak's, which a flood fill from the peak gives more cheaply than labelling
-    seeds = (smooth >= high).view(np.uint8)
     filled = np.zeros((values.shape[0] + 2, values.shape[1] + 2), np.uint8)
     cv2.floodFill(candidates, filled, peak_at, 1, 0, 0, _FILL_8 | cv2.FLOODFILL_MASK_ONLY)
     region = np.ascontiguousarray(filled[1:-1, 1:-1])
-    if cv2.countNonZero(seeds & region) == cv2.countNonZero(seeds):
+    # the largest value left out: of the other candidates (the rest lies under `low`);
+    # under `high` (in float32, as the seeds' comparison), none of them holds a seed
+    left_out = cv2.minMaxLoc(smooth, candidates ^ region)[1]
+    if left_out < np.float32(high):
         found = component_outlines(region, outlines, hierarchy)
-        # the regions left out are the other candidates (the rest lies under `low`)
-        left_out = cv2.minMaxLoc(smooth, candidates ^ region)[1]
         return Prepared(
             mask=region, labels=region, n_regions=1, outlines=found, left_out=left_out, **common
         )
+    seeds = (smooth >= high).view(np.uint8)
     count, labels = cv2.connectedComponents(candidates, connectivity=8, ltype=cv2.CV_32S)
     seeded = np.bincount(labels[seeds.view(bool)], minlength=count) > 0
     seeded[0] = False

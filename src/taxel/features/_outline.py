@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
+import cv2
 import numpy as np
 
 from taxel.features._fitting import centred, dot, line_through, std, taubin_circle
@@ -186,17 +187,25 @@ def free_chains(
     finite face or tip, not an edge crossing the array.
     """
     rows, cols = shape
-    # the taxels where an outline is free: inside the margin, off the gaps' walls
-    allowed = np.zeros(shape, np.uint8)
-    inner = (slice(margin, rows - margin), slice(margin, cols - margin))
-    allowed[inner] = explained[inner] == 0
+    # the taxels where an outline is free: inside the margin, off the gaps' walls (with no
+    # gap, the margin alone, tested on the outline's points)
+    allowed = None
+    if cv2.countNonZero(explained):
+        allowed = np.zeros(shape, np.uint8)
+        inner = (slice(margin, rows - margin), slice(margin, cols - margin))
+        allowed[inner] = explained[inner] == 0
     chains = []
     for contour in contours:
         count = contour.shape[0]
         if count < _MIN_CHAIN:
             continue
         points = contour.reshape(count, 2)
-        free = allowed[points[:, 1], points[:, 0]]
+        if allowed is None:
+            inside = (margin, margin), (cols - 1 - margin, rows - 1 - margin)
+            free = cv2.inRange(contour, *inside).reshape(count)
+            free >>= 7  # 255 -> 1, as `allowed` holds
+        else:
+            free = allowed[points[:, 1], points[:, 0]]
         if not 0 < np.count_nonzero(free) < count:
             continue
         # start on a taxel that is not free, so that no free piece wraps around the end
