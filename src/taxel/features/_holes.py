@@ -12,7 +12,7 @@ from typing import Any
 import cv2
 import numpy as np
 
-from taxel.features._fitting import CircleFit, circle_fit_algebraic
+from taxel.features._fitting import CircleFit, taubin_circle
 from taxel.features._gaps import HoleReport, SlotReport, gaps_core
 from taxel.features._image import Prepared, prepare
 
@@ -39,22 +39,29 @@ def diameter_test(
 ) -> bool:
     """The seed's hole test on a prepared image and its outline taxels (internal core).
 
-    Fits a circle to the outline (or takes `circle`, fitted to it in taxel units) and
-    walks 16 diameters of it across 2 radii each way (the fit to both rims of a washer
-    lies between them): a hole is present when some diameter crosses the contact's
-    outline 4 times, twice on each side of the fitted centre (object rim, hole rim), with
-    the centre off contact. Crossings are counted on the contact mask, which a sampled
-    line cannot slip through at a diagonal.
+    Fits a circle to the outline (Taubin's, as `circle_fit_algebraic`; or takes `circle`,
+    fitted to it in taxel units) and walks 16 diameters of it across 2 radii each way
+    (the fit to both rims of a washer lies between them): a hole is present when some
+    diameter crosses the contact's outline 4 times, twice on each side of the fitted
+    centre (object rim, hole rim), with the centre off contact. Crossings are counted on
+    the contact mask, which a sampled line cannot slip through at a diagonal.
     """
     if rows.size < 8:
         return False
-    fit = circle or circle_fit_algebraic(cols.astype(float), rows.astype(float))
+    if circle is not None:
+        centre_c, centre_r = circle.center_m
+        radius = circle.radius_m
+    else:
+        # the circle alone: its RMS is not needed here
+        fitted = taubin_circle(cols.astype(float), rows.astype(float))
+        if fitted is None:
+            return False
+        centre_c, centre_r, radius = fitted
     shape = prepared.mask.shape
-    if not math.isfinite(fit.radius_m) or fit.radius_m < 2 or fit.radius_m > 2 * max(shape):
+    if not math.isfinite(radius) or radius < 2 or radius > 2 * max(shape):
         return False
-    centre_c, centre_r = fit.center_m
     # one taxel per step: the contact's walls are at least 2 taxels thick after smoothing
-    steps = np.arange(-_DIAMETER_REACH * fit.radius_m, _DIAMETER_REACH * fit.radius_m, 1.0)
+    steps = np.arange(-_DIAMETER_REACH * radius, _DIAMETER_REACH * radius, 1.0)
     cols_at = _COSINES * steps
     cols_at += centre_c
     rows_at = _SINES * steps

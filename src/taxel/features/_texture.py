@@ -13,6 +13,7 @@ import numpy as np
 from taxel._validation import check_range
 from taxel.features._fitting import dot
 from taxel.features._image import (
+    WHOLE_IMAGE,
     Prepared,
     contact_area,
     contact_box,
@@ -156,6 +157,24 @@ def _first_of_each(points: np.ndarray, labels: np.ndarray) -> np.ndarray:
     return points[[first[label] for label in sorted(first)]]
 
 
+def _contact_residual(prepared: Prepared) -> np.ndarray:
+    """The noise residual of `prepare` at the contact's taxels, in raster order.
+
+    Read in the contact's window: row i of the residual is row 1 + i * step of the image,
+    and column j is column 1 + j.
+    """
+    step, residual, mask = prepared.residual_step, prepared.residual, prepared.mask
+    assert residual is not None
+    if mask.size <= WHOLE_IMAGE:
+        return residual[mask[1:-1:step, 1:-1].view(bool)]
+    rows, cols = contact_window(prepared)
+    first, last = max(-((1 - rows.start) // step), 0), -((1 - rows.stop) // step)
+    left, right = max(cols.start - 1, 0), cols.stop - 1
+    residual = residual[first:last, left:right]
+    on_rows = mask[1 + first * step :: step, 1 + left : 1 + right]
+    return residual[on_rows[: residual.shape[0], : residual.shape[1]].view(bool)]
+
+
 def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[int, float]:
     """Number and mean height above the baseline of the contact's high points (internal).
 
@@ -179,16 +198,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     lowest = cv2.erode(smooth, _square(2 * math.ceil(radius) + 1))
     raw_noise = prepared.raw_noise
     if prepared.residual is not None:
-        # the residual's rows and columns that fall in the contact's window (row i of the
-        # residual is row 1 + i * step of the image, column j is column 1 + j)
-        step = prepared.residual_step
-        window_rows, window_cols = contact_window(prepared)
-        first, last = -((1 - window_rows.start) // step), -((1 - window_rows.stop) // step)
-        first, left, right = max(first, 0), max(window_cols.start - 1, 0), window_cols.stop - 1
-        residual = prepared.residual[first:last, left:right]
-        on_rows = prepared.mask[1 + first * step :: step, 1 + left : 1 + right]
-        inside = residual[on_rows[: residual.shape[0], : residual.shape[1]].view(bool)]
-        raw_noise = max(raw_noise, noise_from_residual(inside[::4]))
+        raw_noise = max(raw_noise, noise_from_residual(_contact_residual(prepared)[::4]))
     # white noise of sigma n leaves n / (2 sqrt(pi) sigma) after a Gaussian of sigma
     noise = raw_noise / (2.0 * math.sqrt(math.pi) * sigma)
     margin = np.float32(max(_MAXIMUM_SIGMAS * noise, 1e-9 * prepared.contrast, 1e-30))
@@ -219,8 +229,8 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     padded = cv2.copyMakeBorder(smooth, pad, pad, pad, pad, cv2.BORDER_REPLICATE).ravel()
     centres = ((point_rows + pad) * (smooth.shape[1] + 2 * pad) + (point_cols + pad))[:, None]
     ring = np.take(padded, centres + ring_offsets)
-    high = np.flatnonzero(heights > np.maximum.reduce(ring, axis=1) + margin)
-    if not high.size:
+    high = heights > np.maximum.reduce(ring, axis=1) + margin
+    if not np.count_nonzero(high):
         return 0, 0.0
     # principal curvatures by central differences one sigma each way, on the points that
     # stand above their ring
@@ -238,7 +248,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     if count > 1 and not tied:
         # the mean height sums the high points in the order of their plateaus' labels (the
         # rounding depends on it); labelled only now that few points are left
-        chosen = high[peaked]
+        chosen = np.flatnonzero(high)[peaked]
         labels = cv2.connectedComponents(peaks)[1][point_rows[chosen], point_cols[chosen]]
         heights = heights[np.argsort(labels)]
     return count, float(heights.mean()) - prepared.baseline
