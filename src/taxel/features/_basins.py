@@ -4,13 +4,14 @@ Helper of `taxel.features._gaps`: the outer outlines of the non-contact regions 
 levels of the smoothed image (50 % and 25 % of the contrast, then the contact threshold),
 with cheap tests on each outline alone.
 
-The outlines are traced in the contact's box grown by 1 taxel when that gives the same
-basins, which is the usual case (see `_window`): every taxel above the level lies in the
-box, so the grown box's ring (where it is not the array's border) is non-contact and joined
-to the rest of the array; a region reaching the ring continues out of the box, along the
-array's border. Such a region meets the border over a whole side of the array and more,
-too long a run for a slot's end, so it is never a basin: in the box it is dropped, and
-every other region lies in the box whole, so its outline is the same there.
+Regions reaching out of the contact's box are dropped unseen when they cannot be basins,
+which is the usual case (see `_window`): every taxel above the level lies in the box, and
+a region out of the box meets the array's border over a whole side of the array and more,
+too long a run for a slot's end. On a large array the outlines are then traced in the
+rows of the box grown by 1 taxel alone: the rows just above and below the box (where they
+are not the array's border) are non-contact and joined to the rest of the array, so the
+regions reaching them are among those dropped, and every other region lies in the box
+whole, so its outline is the same there.
 """
 
 from __future__ import annotations
@@ -77,41 +78,20 @@ def _shortest_frame_run(box: tuple[int, int, int, int], shape: tuple[int, int]) 
 
 
 def _window(prepared: Prepared, limit: float) -> tuple[slice, slice] | None:
-    """The contact's box grown by 1 (within the array), when basins may be traced there.
+    """The rows of the contact's box grown by 1, if regions out of the box are no basins.
 
-    None when they may not, or need not (a small image is traced whole, and so is a box
-    that fills the array). A region out of the box meets the border over at least
-    `_shortest_frame_run` taxels; more than sqrt(2.5 limit) + 2 (plus a taxel against
-    rounding) is more than a slot's end of at most half the array (area <= limit) can
-    meet: then no such region is a basin.
+    A region out of the box meets the border over at least `_shortest_frame_run` taxels;
+    more than sqrt(2.5 limit) + 2 (plus a taxel against rounding) is more than a slot's
+    end of at most half the array (area <= limit) can meet: then no such region is a
+    basin. None otherwise. (Whole rows: they lie in memory in one piece, which NumPy
+    works faster than a narrower window.)
     """
     rows, cols = prepared.image.shape
     box = contact_box(prepared)
-    x0, y0, width, height = box
-    if rows * cols <= WHOLE_IMAGE or width * height >= (rows - 2) * (cols - 2):
-        return None
     if _shortest_frame_run(box, (rows, cols)) <= math.sqrt(SLOT_ELONGATION * limit) + 3:
         return None
-    return (
-        slice(max(y0 - 1, 0), min(y0 + height + 1, rows)),
-        slice(max(x0 - 1, 0), min(x0 + width + 1, cols)),
-    )
-
-
-def _outside(
-    prepared: Prepared, level: float, window: tuple[slice, slice] | None
-) -> tuple[np.ndarray, bool]:
-    """The non-contact taxels at `level` (uint8), and whether they are those of `window`.
-
-    In `window` when every taxel above the level lies in the contact's box, else in the
-    whole array.
-    """
-    # `smooth < level` in one comparison; at the contact threshold, the mask's complement
-    if level == prepared.low:
-        return (1 - prepared.mask, False) if window is None else (1 - prepared.mask[window], True)
-    if window is None or prepared.left_out >= level:
-        return (prepared.smooth < level).view(np.uint8), False
-    return (prepared.smooth[window] < level).view(np.uint8), True
+    _, y0, _, height = box
+    return slice(max(y0 - 1, 0), min(y0 + height + 1, rows)), slice(0, cols)
 
 
 def basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
@@ -135,9 +115,25 @@ def basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
     ] + [prepared.low]
     window = _window(prepared, limit)
     x0, y0, width, height = contact_box(prepared)
+    # a large array is traced in the window alone (a small one, or a window that is the
+    # whole array, saves nothing)
+    crop = (
+        window is not None
+        and rows * cols > WHOLE_IMAGE
+        and window[0].stop - window[0].start < rows
+    )
     for level in levels:
-        outside, boxed = _outside(prepared, level, window)
-        origin = (window[1].start, window[0].start) if boxed and window else (0, 0)
+        # regions out of the box are no basins when every taxel above the level is in it
+        boxed = window is not None and (level == prepared.low or prepared.left_out < level)
+        cropped = crop and boxed
+        # `smooth < level` in one comparison; at the contact threshold, the mask's complement
+        if level == prepared.low:
+            outside = 1 - (prepared.mask[window] if cropped else prepared.mask)
+        else:
+            outside = ((prepared.smooth[window] if cropped else prepared.smooth) < level).view(
+                np.uint8
+            )
+        origin = (window[1].start, window[0].start) if cropped else (0, 0)
         # two-level hierarchy: every region's outer outline is at the top, however nested
         contours, hierarchy = cv2.findContours(
             outside, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE, offset=origin
@@ -148,6 +144,11 @@ def basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
             points = contour.shape[0]
             if parent >= 0 or points < 3:
                 continue
+            # the outline runs through the outer taxels' centres: add half a taxel all round
+            # (`contourArea` is the moments' m00, without building them all)
+            area = cv2.contourArea(contour) + 0.5 * points
+            if area < smallest or area > limit:
+                continue
             left, top, box_width, box_height = cv2.boundingRect(contour)
             if boxed and (
                 left < x0
@@ -156,11 +157,6 @@ def basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
                 or top + box_height > y0 + height
             ):
                 continue  # out of the contact's box: never a basin (see the module notes)
-            # the outline runs through the outer taxels' centres: add half a taxel all round
-            # (`contourArea` is the moments' m00, without building them all)
-            area = cv2.contourArea(contour) + 0.5 * points
-            if area < smallest or area > limit:
-                continue
             if left == 0 or top == 0 or left + box_width == cols or top + box_height == rows:
                 moments = cv2.moments(contour)
                 count = max(moments["m00"], 1e-9)

@@ -173,10 +173,11 @@ def contact_box(prepared: Prepared) -> tuple[int, int, int, int]:
 def contact_window(prepared: Prepared, margin: int = 0) -> tuple[slice, slice]:
     """Rows and columns that hold every contact taxel (internal; kept in ``prepared.memo``).
 
-    The contact's bounding box grown by `margin` taxels (within the image), so that sums,
-    counts, extremes and filters of that reach over the contact can be computed there
-    alone; the whole image when it is small (up to 32 x 32), where cropping costs more
-    than it saves.
+    The rows of the contact's bounding box grown by `margin` taxels (within the image),
+    across the whole width: sums, counts, extremes and filters of that reach over the
+    contact can be computed there alone, on memory in one piece (NumPy works row by row
+    on a narrower window, which costs more than the taxels it saves). The whole image when
+    it is small (up to 32 x 32), where cropping costs more than it saves.
     """
     window = prepared.memo.get(("window", margin))
     if window is None:
@@ -184,10 +185,10 @@ def contact_window(prepared: Prepared, margin: int = 0) -> tuple[slice, slice]:
         if prepared.mask.size <= WHOLE_IMAGE:
             window = (slice(0, rows), slice(0, cols))
         else:
-            left, top, width, height = contact_box(prepared)
+            _, top, _, height = contact_box(prepared)
             window = (
                 slice(max(top - margin, 0), min(top + height + margin, rows)),
-                slice(max(left - margin, 0), min(left + width + margin, cols)),
+                slice(0, cols),
             )
         prepared.memo[("window", margin)] = window
     return window
