@@ -27,8 +27,14 @@ __all__ = [
 # Diameters sampled by the seed's hole test and their extent beyond the fitted radius.
 _DIAMETERS = 16
 _DIAMETER_REACH = 2.0
-_COSINES = np.cos(np.arange(_DIAMETERS) * (math.pi / _DIAMETERS))[:, None]
-_SINES = np.sin(np.arange(_DIAMETERS) * (math.pi / _DIAMETERS))[:, None]
+# the diameters' directions: cosines (x, along columns) above sines (y, along rows)
+_DIRECTIONS = np.concatenate(
+    (
+        np.cos(np.arange(_DIAMETERS) * (math.pi / _DIAMETERS)),
+        np.sin(np.arange(_DIAMETERS) * (math.pi / _DIAMETERS)),
+    )
+)[:, None]
+_DIRECTIONS.flags.writeable = False
 
 
 def diameter_test(
@@ -62,16 +68,17 @@ def diameter_test(
         return False
     # one taxel per step: the contact's walls are at least 2 taxels thick after smoothing
     steps = np.arange(-_DIAMETER_REACH * radius, _DIAMETER_REACH * radius, 1.0)
-    cols_at = _COSINES * steps
-    cols_at += centre_c
-    rows_at = _SINES * steps
-    rows_at += centre_r
+    # the samples' columns (first 16 rows) and rows (last 16), rounded to taxels
+    at = _DIRECTIONS * steps
+    at[:_DIAMETERS] += centre_c
+    at[_DIAMETERS:] += centre_r
+    at = np.rint(at, out=at).astype(np.float32)
     # the nearest taxel of each sample, 0 off the array: a remap with whole-number maps
     # (exact in float32) reads them in one call
     touched = cv2.remap(
         prepared.mask,
-        np.rint(cols_at, out=cols_at).astype(np.float32),
-        np.rint(rows_at, out=rows_at).astype(np.float32),
+        at[:_DIAMETERS],
+        at[_DIAMETERS:],
         cv2.INTER_NEAREST,
         borderMode=cv2.BORDER_CONSTANT,
         borderValue=0,
