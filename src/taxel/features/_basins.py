@@ -117,23 +117,24 @@ def basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
     x0, y0, width, height = contact_box(prepared)
     # a large array is traced in the window alone (a small one, or a window that is the
     # whole array, saves nothing)
-    crop = (
+    crop = None
+    if (
         window is not None
         and rows * cols > WHOLE_IMAGE
         and window[0].stop - window[0].start < rows
-    )
+    ):
+        crop = window
     for level in levels:
         # regions out of the box are no basins when every taxel above the level is in it
         boxed = window is not None and (level == prepared.low or prepared.left_out < level)
-        cropped = crop and boxed
+        cut = crop if boxed else None
         # `smooth < level` in one comparison; at the contact threshold, the mask's complement
         if level == prepared.low:
-            outside = 1 - (prepared.mask[window] if cropped else prepared.mask)
+            outside = 1 - (prepared.mask if cut is None else prepared.mask[cut])
         else:
-            outside = ((prepared.smooth[window] if cropped else prepared.smooth) < level).view(
-                np.uint8
-            )
-        origin = (window[1].start, window[0].start) if cropped else (0, 0)
+            smooth = prepared.smooth if cut is None else prepared.smooth[cut]
+            outside = (smooth < level).view(np.uint8)
+        origin = (0, 0) if cut is None else (cut[1].start, cut[0].start)
         # two-level hierarchy: every region's outer outline is at the top, however nested
         contours, hierarchy = cv2.findContours(
             outside, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE, offset=origin

@@ -131,7 +131,7 @@ class Prepared:
     residual: np.ndarray | None = None
     residual_step: int = 1
     outlines: tuple[np.ndarray, ...] | None = None
-    memo: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
+    memo: dict[Any, Any] = field(default_factory=dict, repr=False, compare=False)
     blur: float = 0.0
     cover_depth: float = 0.0
     left_out: float = math.inf

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import cast
 
 import cv2
 import numpy as np
@@ -202,7 +203,7 @@ def free_chains(
         points = contour.reshape(count, 2)
         if allowed is None:
             inside = (margin, margin), (cols - 1 - margin, rows - 1 - margin)
-            free = cv2.inRange(contour, *inside).reshape(count)
+            free = cast(np.ndarray, cv2.inRange(contour, *inside)).reshape(count)
             free >>= 7  # 255 -> 1, as `allowed` holds
         else:
             free = allowed[points[:, 1], points[:, 0]]
