@@ -300,7 +300,8 @@ def extract(
         # one line and circle through the outline, for the type and the hole test, fitted
         # when first asked for: a band's type and a convex contact's hole test do without
         if not fits:
-            fits.append(fit_line_and_circle(cols, rows) if cols.size >= 3 else None)
+            x, y = cols.astype(float), rows.astype(float)
+            fits.append(fit_line_and_circle(x, y) if cols.size >= 3 else None)
         return fits[0]
 
     shape = shape_core(

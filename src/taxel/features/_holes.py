@@ -59,7 +59,7 @@ def diameter_test(
         radius = circle.radius_m
     else:
         # the circle alone: its RMS is not needed here
-        fitted = taubin_circle(np.asarray(cols, float), np.asarray(rows, float))
+        fitted = taubin_circle(cols.astype(float), rows.astype(float))
         if fitted is None:
             return False
         centre_c, centre_r, radius = fitted
@@ -103,15 +103,14 @@ def outline_contours(prepared: Prepared) -> tuple[np.ndarray, ...]:
 def outline_taxels(
     prepared: Prepared, contours: Sequence[np.ndarray] | None = None
 ) -> tuple[np.ndarray, np.ndarray]:
-    """(cols, rows) of the taxels on the outlines of the contact mask, as floats (internal)."""
+    """(cols, rows) of the taxels on the outlines of the contact mask (internal)."""
     if contours is None:
         contours, _ = cv2.findContours(prepared.mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)
     if not contours:
-        empty = np.zeros(0)
+        empty = np.zeros(0, np.intp)
         return empty, empty
-    # two contiguous rows of floats, as the fits take them
-    cols, rows = np.concatenate(contours).reshape(-1, 2).T.astype(float, order="C")
-    return cols, rows
+    points = np.concatenate(contours)[:, 0, :]
+    return points[:, 0], points[:, 1]
 
 
 def detect_holes(
