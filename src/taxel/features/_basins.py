@@ -21,7 +21,8 @@ import math
 import cv2
 import numpy as np
 
-from taxel.features._image import WHOLE_IMAGE, Prepared, contact_box
+from taxel.features._image import Prepared
+from taxel.features._window import WHOLE_IMAGE, contact_box
 
 __all__ = ["MIN_GAP_AREA", "SLOT_BORDER_WIDTHS", "SLOT_ELONGATION", "basins"]
 

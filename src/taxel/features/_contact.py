@@ -9,8 +9,9 @@ from typing import Any
 import cv2
 import numpy as np
 
-from taxel.features._image import Prepared, contact_box, contact_window, prepare
+from taxel.features._image import Prepared, prepare
 from taxel.features._moments import binary_moments
+from taxel.features._window import contact_box, contact_window
 
 __all__ = ["Contact", "ContactRegion", "contact_regions", "find_contact", "region_moments"]
 

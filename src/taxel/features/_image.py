@@ -30,7 +30,7 @@ import numpy as np
 from taxel._validation import check_finite, check_range
 from taxel.features._sensor import cover_blur, cover_depth, hexagonal_resampled, pitch_pair
 
-__all__ = ["WHOLE_IMAGE", "Prepared", "contact_area", "contact_box", "contact_window", "prepare"]
+__all__ = ["Prepared", "prepare"]
 
 # Contact thresholds, in units of the smoothed image's noise sigma (k) or of the contrast (f).
 # The baseline is the minimum of the smoothed image, which lies about 3-4 sigma below the
@@ -56,8 +56,6 @@ _FILL_8 = 8 | (1 << 8)
 # MAD of a standard normal, and the noise gain of `x - mean of its 4 neighbours`.
 _MAD = 1.4826
 _LAPLACE_GAIN = math.sqrt(1.25)
-# Images of at most this many taxels are read whole (see `contact_window`).
-WHOLE_IMAGE = 32 * 32
 
 
 @dataclass(eq=False)
@@ -107,7 +105,7 @@ class Prepared:
         `cv2.findContours` gives them), when segmentation found them; else None.
     memo : dict
         Intermediates one feature computes and another reuses (image moments, the
-        contact's bounding box).
+        contact's bounding box and windows, see `taxel.features._window`).
     left_out : float
         Largest value of `smooth` out of the contact, or a bound it stays under: `low`
         when no region above `low` was left out of `mask` (+inf when not known).
@@ -150,48 +148,6 @@ class Prepared:
     def mean_pitch(self) -> float:
         """Geometric mean of the row and column pitch [m]."""
         return math.sqrt(self.taxel_area)
-
-
-def contact_area(prepared: Prepared) -> int:
-    """Number of contact taxels (internal; the binary moments' m00 when they are known)."""
-    moments = prepared.memo.get("moments")
-    if moments is not None:
-        return int(moments[0]["m00"])
-    rows, cols = contact_window(prepared)
-    return cv2.countNonZero(prepared.mask[rows, cols])
-
-
-def contact_box(prepared: Prepared) -> tuple[int, int, int, int]:
-    """(left, top, width, height) of the contact mask (internal; kept in ``prepared.memo``)."""
-    box = prepared.memo.get("box")
-    if box is None:
-        left, top, width, height = cv2.boundingRect(prepared.mask)
-        box = prepared.memo["box"] = (left, top, width, height)
-    return box
-
-
-def contact_window(prepared: Prepared, margin: int = 0) -> tuple[slice, slice]:
-    """Rows and columns that hold every contact taxel (internal; kept in ``prepared.memo``).
-
-    The rows of the contact's bounding box grown by `margin` taxels (within the image),
-    across the whole width: sums, counts, extremes and filters of that reach over the
-    contact can be computed there alone, on memory in one piece (NumPy works row by row
-    on a narrower window, which costs more than the taxels it saves). The whole image when
-    it is small (up to 32 x 32), where cropping costs more than it saves.
-    """
-    window = prepared.memo.get(("window", margin))
-    if window is None:
-        rows, cols = prepared.mask.shape
-        if prepared.mask.size <= WHOLE_IMAGE:
-            window = (slice(0, rows), slice(0, cols))
-        else:
-            _, top, _, height = contact_box(prepared)
-            window = (
-                slice(max(top - margin, 0), min(top + height + margin, rows)),
-                slice(0, cols),
-            )
-        prepared.memo[("window", margin)] = window
-    return window
 
 
 def component_outlines(

@@ -9,9 +9,10 @@ import numpy as np
 
 from taxel.features._contact import Contact, region_moments
 from taxel.features._fitting import CircleFit, LineFit, fit_line_and_circle
-from taxel.features._image import Prepared, contact_box, contact_window
+from taxel.features._image import Prepared
 from taxel.features._moments import binary_moments
 from taxel.features._outline import lobes
+from taxel.features._window import contact_box, contact_window
 
 __all__ = [
     "band_fits",

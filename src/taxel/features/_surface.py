@@ -11,7 +11,8 @@ import cv2
 import numpy as np
 
 from taxel._validation import as_finite_array
-from taxel.features._image import Prepared, contact_area, contact_window, prepare
+from taxel.features._image import Prepared, prepare
+from taxel.features._window import contact_area, contact_window
 
 __all__ = ["ContactPlane", "contact_plane", "plane_core"]
 

@@ -12,15 +12,8 @@ import numpy as np
 
 from taxel._validation import check_range
 from taxel.features._fitting import dot
-from taxel.features._image import (
-    WHOLE_IMAGE,
-    Prepared,
-    contact_area,
-    contact_box,
-    contact_window,
-    noise_from_residual,
-    prepare,
-)
+from taxel.features._image import Prepared, noise_from_residual, prepare
+from taxel.features._window import WHOLE_IMAGE, contact_area, contact_box, contact_window
 
 __all__ = ["Texture", "high_points", "texture_core", "texture_measures"]
 
