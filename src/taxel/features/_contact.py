@@ -9,7 +9,9 @@ from typing import Any
 import cv2
 import numpy as np
 
-from taxel.features._image import Prepared, contact_box, prepare
+from taxel.features._image import Prepared, prepare
+from taxel.features._moments import binary_moments
+from taxel.features._window import contact_box, contact_window
 
 __all__ = ["Contact", "ContactRegion", "contact_regions", "find_contact", "region_moments"]
 
@@ -118,13 +120,15 @@ def _axes_of(
 
 
 def region_moments(prepared: Prepared, mask: np.ndarray) -> tuple[dict, dict]:
-    """Image moments of a region and of its signal above the baseline (internal).
+    """Image moments of a contact region and of its signal above the baseline (internal).
 
+    The binary moments are taken on the contact's window alone (see `binary_moments`).
     With one region, kept in ``prepared.memo`` for the other features.
     """
     if prepared.n_regions == 1 and "moments" in prepared.memo:
         return prepared.memo["moments"]
-    binary = cv2.moments(mask, binaryImage=True)
+    rows, cols = contact_window(prepared)
+    binary = binary_moments(mask[rows, cols], rows.start, cols.start)
     signal = prepared.smooth - np.float32(prepared.baseline)
     signal *= mask
     weighted = cv2.moments(signal)
@@ -146,9 +150,11 @@ def _one_region(prepared: Prepared) -> Contact:
         count, binary["mu20"], binary["mu02"], binary["mu11"], prepared.pitch
     )
     image = prepared.image
-    above = (image >= np.float32(prepared.low)).view(np.uint8) & mask
+    window = contact_window(prepared)
+    inside, within = image[window], mask[window]
+    above = (inside >= np.float32(prepared.low)).view(np.uint8) & within
     raw_count = cv2.countNonZero(above) or int(count)
-    peak = cv2.minMaxLoc(image, mask)[1]
+    peak = cv2.minMaxLoc(inside, within)[1]
     left, top, width, height = contact_box(prepared)
     border = (
         left == 0 or top == 0 or left + width == mask.shape[1] or top + height == mask.shape[0]

@@ -320,8 +320,8 @@ def extract(
     convex = len(contours) == 1 and plane.fill >= _CONVEX_FILL
     test = False
     if not convex:
-        fit = outline_fit()
-        test = diameter_test(prepared, cols, rows, fit[1] if fit else None)
+        # the outline's circle, if the type fitted it; else the test fits the circle alone
+        test = diameter_test(prepared, cols, rows, fits[0][1] if fits and fits[0] else None)
     hole_report = HoleReport(bool(holes), len(holes), tuple(holes), test)
     slot_report = SlotReport(bool(slots), len(slots), tuple(slots))
     located = _locate(contact, shape, plane, depth_map, pose_matrix)

@@ -13,10 +13,12 @@ from taxel._validation import as_finite_array
 __all__ = [
     "CircleFit",
     "LineFit",
+    "centred",
     "dot",
     "fit_circle",
     "fit_line",
     "fit_line_and_circle",
+    "line_through",
     "mean",
     "std",
     "taubin_circle",
@@ -104,21 +106,47 @@ def _points(points: Any, minimum: int) -> np.ndarray:
     return array
 
 
-def line_fit_core(x: np.ndarray, y: np.ndarray) -> LineFit:
-    """Total least squares line through (x, y) (validated arrays; internal)."""
-    mean_x, mean_y = mean(x), mean(y)
-    centred = np.empty((2, x.size))
-    np.subtract(x, mean_x, out=centred[0])
-    np.subtract(y, mean_y, out=centred[1])
+def centred(
+    x: np.ndarray, y: np.ndarray, weight: np.ndarray | None = None
+) -> tuple[float, float, float, np.ndarray]:
+    """Mean x and y of (weighted) points, their total weight, and the centred points.
+
+    Returns the means and total weight as plain floats, and a new (3, n) array whose rows
+    0 and 1 hold ``x - mean x`` and ``y - mean y`` (row 2 is left for the caller), so
+    that one line fit, circle fit and vertex search can share them (internal).
+    """
+    if weight is None:
+        total = float(x.size)
+        mean_x, mean_y = mean(x), mean(y)
+    else:
+        total = float(np.add.reduce(weight))
+        mean_x, mean_y = dot(weight, x) / total, dot(weight, y) / total
+    terms = np.empty((3, x.size))
+    np.subtract(x, mean_x, out=terms[0])
+    np.subtract(y, mean_y, out=terms[1])
+    return mean_x, mean_y, total, terms
+
+
+def line_through(points: tuple[float, float, float, np.ndarray]) -> tuple[float, float, float]:
+    """Direction [rad], offset and sum of squared distances of the total least squares line.
+
+    `points`: unweighted points as `centred` gives them (internal; see `line_fit_core`).
+    """
+    mean_x, mean_y, _, terms = points
     # the three sums of products in one einsum (the same loop, and sums, as three `dot`s)
-    (sxx, sxy), (_, syy) = np.einsum("in,jn->ij", centred, centred).tolist()
+    (sxx, sxy), (_, syy) = np.einsum("in,jn->ij", terms[:2], terms[:2]).tolist()
     angle = 0.5 * math.atan2(2 * sxy, sxx - syy)
     angle %= math.pi
     # the smallest eigenvalue of the scatter matrix is the sum of squared distances
     half = (sxx + syy) / 2
     smallest = max(half - math.hypot((sxx - syy) / 2, sxy), 0.0)
-    normal = (-math.sin(angle), math.cos(angle))
-    offset = normal[0] * mean_x + normal[1] * mean_y
+    offset = -math.sin(angle) * mean_x + math.cos(angle) * mean_y
+    return angle, offset, smallest
+
+
+def line_fit_core(x: np.ndarray, y: np.ndarray) -> LineFit:
+    """Total least squares line through (x, y) (validated arrays; internal)."""
+    angle, offset, smallest = line_through(centred(x, y))
     return LineFit(angle, offset, math.sqrt(smallest / x.size), int(x.size))
 
 
@@ -175,44 +203,39 @@ def _taubin(
 
 
 def _centred_moments(
-    x: np.ndarray, y: np.ndarray, weight: np.ndarray | None
-) -> tuple[np.ndarray, float, float, float, tuple[float, ...]]:
-    """Centred coordinates, their mean and total weight, and their moments up to 4th order.
+    points: tuple[float, float, float, np.ndarray], weight: np.ndarray | None
+) -> tuple[float, ...]:
+    """Moments up to 4th order of (weighted) points as `centred` gives them.
 
-    Returns ``terms`` (rows u, v, u^2 + v^2), mean x, mean y, the total weight and the
-    weighted means (m_uu, m_vv, m_uv, m_uz, m_vz, m_zz) as plain floats.
+    Fills the third row of the points' array with u^2 + v^2 and returns the weighted means
+    (m_uu, m_vv, m_uv, m_uz, m_vz, m_zz) as plain floats.
     """
-    n = int(x.size)
-    if weight is None:
-        total = float(n)
-        mean_x, mean_y = mean(x), mean(y)
-    else:
-        total = float(np.add.reduce(weight))
-        mean_x, mean_y = dot(weight, x) / total, dot(weight, y) / total
-    terms = np.empty((3, n))
-    u = np.subtract(x, mean_x, out=terms[0])
-    v = np.subtract(y, mean_y, out=terms[1])
-    np.multiply(u, u, out=terms[2])
-    terms[2] += v * v
+    _, _, total, terms = points
+    u, v, z = terms
+    np.multiply(u, u, out=z)
+    z += v * v
     weighted = terms if weight is None else terms * weight
     # plain floats from here: scalar arithmetic on NumPy scalars costs several times more
     (m_uu, m_uv, m_uz), (_, m_vv, m_vz), (_, _, m_zz) = (
         np.einsum("in,jn->ij", weighted, terms) / total
     ).tolist()
-    return terms, mean_x, mean_y, total, (m_uu, m_vv, m_uv, m_uz, m_vz, m_zz)
+    return m_uu, m_vv, m_uv, m_uz, m_vz, m_zz
 
 
-def taubin_circle(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float] | None:
+def taubin_circle(
+    x: np.ndarray, y: np.ndarray, points: tuple[float, float, float, np.ndarray] | None = None
+) -> tuple[float, float, float] | None:
     """Centre (x, y) and radius of the circle of `fit_line_and_circle`, without its RMS.
 
-    None where that fit gives no circle (collinear points).
+    None where that fit gives no circle (collinear points). `points`: (x, y) as `centred`
+    gives them, if already made (its third row is overwritten).
     """
-    _, mean_x, mean_y, _, moments = _centred_moments(x, y, None)
-    solution = _taubin(*moments)
+    points = points or centred(x, y)
+    solution = _taubin(*_centred_moments(points, None))
     if solution is None:
         return None
     a, b, radius = solution
-    return mean_x + a, mean_y + b, radius
+    return points[0] + a, points[1] + b, radius
 
 
 def fit_line_and_circle(
@@ -226,7 +249,9 @@ def fit_line_and_circle(
     `rms_m` its half-width over sqrt(3). The circle is Taubin's (see `circle_fit_algebraic`).
     """
     n = int(x.size)
-    terms, mean_x, mean_y, total, moments = _centred_moments(x, y, weight)
+    points = centred(x, y, weight)
+    mean_x, mean_y, total, terms = points
+    moments = _centred_moments(points, weight)
     m_uu, m_vv, m_uv = moments[:3]
     angle = (0.5 * math.atan2(2 * m_uv, m_uu - m_vv)) % math.pi
     smallest = max((m_uu + m_vv) / 2 - math.hypot((m_uu - m_vv) / 2, m_uv), 0.0)

@@ -27,31 +27,27 @@ from typing import cast
 import cv2
 import numpy as np
 
+from taxel.features._basins import MIN_GAP_AREA, SLOT_BORDER_WIDTHS, SLOT_ELONGATION, basins
 from taxel.features._image import Prepared
+from taxel.features._moments import binary_moments
 
 __all__ = ["Hole", "HoleReport", "Slot", "SlotReport", "gaps_core"]
 
-# Levels, besides the contact threshold, at which basins are searched [fraction of contrast].
-_LEVELS = (0.25, 0.5)
 # A basin holds a gap when its bottom lies below this fraction of the surrounding level.
 _DIP = 0.5
 # A gap lies in a face: at least half the ring 2-6 taxels around it presses as clearly as a
 # contact's seed (see `prepare`). Not so in the noisy fringe of a weak contact, where noise
 # alone can enclose a dark patch.
 _FACE = 0.5
-# Smallest gap considered: a disk of one taxel's radius at the half level [taxels^2].
-_MIN_GAP_AREA = math.pi
 # A hole is round: its equivalent-ellipse axes within 2:1, and its area at most 1.9 times the
 # largest inscribed disk (a disk gives ~1.2 on a grid; the irregular valleys between the
 # bumps of a texture give far more).
 _HOLE_AXIS_RATIO = 0.5
 _HOLE_FILL = 1.9
-# A slot is at least 2.5 times as long as it is wide (shorter: a hole or a notch), has
-# parallel walls (area >= 0.6 of length times its widest span; a wedge-shaped gap gives
-# ~0.5) and runs off the array only at its ends (border taxels <= 2.5 widths).
-_SLOT_ELONGATION = 2.5
+# A slot is at least 2.5 times as long as it is wide and runs off the array only at its
+# ends (see `taxel.features._basins`), and has parallel walls (area >= 0.6 of length times
+# its widest span; a wedge-shaped gap gives ~0.5).
 _SLOT_PARALLEL = 0.6
-_SLOT_BORDER_WIDTHS = 2.5
 # In a texture (many separate high points) the dark basins between them are the valleys of
 # the surface, not missing material; they are holes only when they make a perforated sheet:
 # 3 or more holes of equal size (radii within 15 %, as punched) in an evenly pressed sheet
@@ -59,9 +55,6 @@ _SLOT_BORDER_WIDTHS = 2.5
 _SHEET_HOLES = 3
 _SHEET_SPREAD = 0.15
 _SHEET_EVENNESS = 0.5
-# At most this many basins are measured per level, largest first (a texture has hundreds of
-# tiny ones; the gaps an object's shape makes are among the largest).
-_MAX_BASINS = 24
 # A hole must be seen all round: a gap closer to the array's border than the cover is deep
 # (and than 2 taxels) cannot be told from a notch, since its wall on that side is blurred
 # into the array's edge.
@@ -151,65 +144,6 @@ class SlotReport:
     items: tuple[Slot, ...]
 
 
-def _basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
-    """Outer outlines of the non-contact regions at each level that may hold a gap.
-
-    Cheap tests on the outline alone come first: a basin must hold at least a taxel's
-    disk, and the disk of the cover's blur (a narrower gap is filled in by the blur and
-    cannot dip to half its surroundings), and at most half the array (more is the free
-    space around a contact); one
-    that reaches the array's border can only be a slot running off it at its ends: long
-    (>= 2.5 widths) and meeting the border over no more than 2.5 widths.
-    """
-    rows, cols = prepared.image.shape
-    limit = 0.5 * rows * cols
-    smallest = max(_MIN_GAP_AREA, math.pi * (0.5 * prepared.blur / prepared.mean_pitch) ** 2)
-    found = []
-    levels = [
-        prepared.baseline + f * prepared.contrast
-        for f in sorted(_LEVELS, reverse=True)
-        if prepared.baseline + f * prepared.contrast > prepared.low
-    ] + [prepared.low]
-    for level in levels:
-        # the non-contact side at this level, in one comparison (`smooth < level` is
-        # `1 - (smooth >= level)`)
-        if level == prepared.low:
-            outside = 1 - prepared.mask
-        else:
-            outside = (prepared.smooth < level).view(np.uint8)
-        # two-level hierarchy: every region's outer outline is at the top, however nested
-        contours, hierarchy = cv2.findContours(outside, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
-        sized = []
-        parents = hierarchy[0][:, 3].tolist() if contours else []
-        for contour, parent in zip(contours, parents, strict=True):
-            points = contour.shape[0]
-            if parent >= 0 or points < 3:
-                continue
-            # the outline runs through the outer taxels' centres: add half a taxel all round
-            # (`contourArea` is the moments' m00, without building them all)
-            area = cv2.contourArea(contour) + 0.5 * points
-            if area < smallest or area > limit:
-                continue
-            left, top, box_width, box_height = cv2.boundingRect(contour)
-            if left == 0 or top == 0 or left + box_width == cols or top + box_height == rows:
-                moments = cv2.moments(contour)
-                count = max(moments["m00"], 1e-9)
-                var_x, var_y = moments["mu20"] / count, moments["mu02"] / count
-                spread = math.hypot((var_x - var_y) / 2, moments["mu11"] / count)
-                length = math.sqrt(12.0 * ((var_x + var_y) / 2 + spread)) + 1.0
-                width = area / length
-                if length < _SLOT_ELONGATION * width:
-                    continue
-                # outline points on the array's border: all but those strictly inside it
-                run = points - cv2.countNonZero(cv2.inRange(contour, (1, 1), (cols - 2, rows - 2)))
-                if run > _SLOT_BORDER_WIDTHS * width + 2:
-                    continue
-            sized.append((area, contour))
-        sized.sort(key=lambda item: -item[0])
-        found += [(contour, level) for _, contour in sized[:_MAX_BASINS]]
-    return found
-
-
 def _reaches_border(box: Sequence[int], r0: int, c0: int, shape: tuple[int, int]) -> bool:
     """Whether a region touches the array's border, from its bounding box in a window.
 
@@ -233,21 +167,16 @@ def _moments_of_old(
 ) -> tuple[dict, int, int]:
     """Moments of a window's region, taken in the gap test's original, wider window.
 
-    The region, in the window of rows r0:r1 and columns c0:c1 (`bounds`), is placed in
-    the window the gap test was written with (margin 6 taxels plus half the basin's
-    size): the moments' rounding depends on their origin, so the results stay the same
-    bit for bit. Returns the moments and the wider window's corner (row, column).
+    The region, in the window of rows r0:r1 and columns c0:c1 (`bounds`), is measured as
+    if placed in the window the gap test was written with (margin 6 taxels plus half the
+    basin's size): the moments' rounding depends on their origin, so the results stay the
+    same bit for bit. Returns the moments and the wider window's corner (row, column).
     """
-    r0, r1, c0, c1 = bounds
+    r0, _, c0, _ = bounds
     left, top, width, height = cv2.boundingRect(contour)
     margin = _REACH + max(width, height) // 2
-    wide_r0, wide_r1 = max(top - margin, 0), min(top + height + margin, shape[0])
-    wide_c0, wide_c1 = max(left - margin, 0), min(left + width + margin, shape[1])
-    if (wide_r0, wide_r1, wide_c0, wide_c1) != bounds:
-        wide = np.zeros((wide_r1 - wide_r0, wide_c1 - wide_c0), np.uint8)
-        wide[r0 - wide_r0 : r1 - wide_r0, c0 - wide_c0 : c1 - wide_c0] = region
-        region = wide
-    return cv2.moments(region, binaryImage=True), wide_r0, wide_c0
+    wide_r0, wide_c0 = max(top - margin, 0), max(left - margin, 0)
+    return binary_moments(region, r0 - wide_r0, c0 - wide_c0), wide_r0, wide_c0
 
 
 def _measure(
@@ -299,7 +228,7 @@ def _measure(
     moments, origin_r, origin_c = _moments_of_old(region, (r0, r1, c0, c1), contour, shape)
     area = moments["m00"]
     where = (slice(r0, r1), slice(c0, c1))
-    if area < _MIN_GAP_AREA:
+    if area < MIN_GAP_AREA:
         return None, where, region, evenness
     row_pitch, col_pitch = prepared.pitch
     pitch = math.sqrt(row_pitch * col_pitch)
@@ -330,7 +259,7 @@ def _measure(
     length = math.sqrt(12.0 * major)
     slot_width = gap_area / length
     span = 2.0 * (inradius + 0.5) * pitch
-    if length < _SLOT_ELONGATION * slot_width or gap_area < _SLOT_PARALLEL * length * span:
+    if length < SLOT_ELONGATION * slot_width or gap_area < _SLOT_PARALLEL * length * span:
         return None, where, region, evenness
     if border:
         on_border = int(
@@ -339,7 +268,7 @@ def _measure(
             + region[:, 0].sum() * (c0 == 0)
             + region[:, -1].sum() * (c1 == cols)
         )
-        if on_border * pitch > _SLOT_BORDER_WIDTHS * slot_width:
+        if on_border * pitch > SLOT_BORDER_WIDTHS * slot_width:
             return None, where, region, evenness
     slot = Slot((mean_r, mean_c), centre_m, angle, slot_width, length, bool(border))
     return slot, where, region, evenness
@@ -370,7 +299,7 @@ def gaps_core(
     if not prepared.present:
         return holes, slots, explained
     marked = False  # whether `explained` holds a gap yet
-    for contour, level in _basins(prepared):
+    for contour, level in basins(prepared):
         if marked:  # a basin already explained (at a higher level) is done
             moments = cv2.moments(contour)
             if moments["m00"] > 0:

@@ -12,7 +12,7 @@ from typing import Any
 import cv2
 import numpy as np
 
-from taxel.features._fitting import CircleFit, circle_fit_algebraic
+from taxel.features._fitting import CircleFit, taubin_circle
 from taxel.features._gaps import HoleReport, SlotReport, gaps_core
 from taxel.features._image import Prepared, prepare
 
@@ -27,8 +27,14 @@ __all__ = [
 # Diameters sampled by the seed's hole test and their extent beyond the fitted radius.
 _DIAMETERS = 16
 _DIAMETER_REACH = 2.0
-_COSINES = np.cos(np.arange(_DIAMETERS) * (math.pi / _DIAMETERS))[:, None]
-_SINES = np.sin(np.arange(_DIAMETERS) * (math.pi / _DIAMETERS))[:, None]
+# the diameters' directions: cosines (x, along columns) above sines (y, along rows)
+_DIRECTIONS = np.concatenate(
+    (
+        np.cos(np.arange(_DIAMETERS) * (math.pi / _DIAMETERS)),
+        np.sin(np.arange(_DIAMETERS) * (math.pi / _DIAMETERS)),
+    )
+)[:, None]
+_DIRECTIONS.flags.writeable = False
 
 
 def diameter_test(
@@ -39,30 +45,45 @@ def diameter_test(
 ) -> bool:
     """The seed's hole test on a prepared image and its outline taxels (internal core).
 
-    Fits a circle to the outline (or takes `circle`, fitted to it in taxel units) and
-    walks 16 diameters of it across 2 radii each way (the fit to both rims of a washer
-    lies between them): a hole is present when some diameter crosses the contact's
-    outline 4 times, twice on each side of the fitted centre (object rim, hole rim), with
-    the centre off contact. Crossings are counted on the contact mask, which a sampled
-    line cannot slip through at a diagonal.
+    Fits a circle to the outline (Taubin's, as `circle_fit_algebraic`; or takes `circle`,
+    fitted to it in taxel units) and walks 16 diameters of it across 2 radii each way
+    (the fit to both rims of a washer lies between them): a hole is present when some
+    diameter crosses the contact's outline 4 times, twice on each side of the fitted
+    centre (object rim, hole rim), with the centre off contact. Crossings are counted on
+    the contact mask, which a sampled line cannot slip through at a diagonal.
     """
     if rows.size < 8:
         return False
-    fit = circle or circle_fit_algebraic(cols.astype(float), rows.astype(float))
+    if circle is not None:
+        centre_c, centre_r = circle.center_m
+        radius = circle.radius_m
+    else:
+        # the circle alone: its RMS is not needed here
+        fitted = taubin_circle(cols.astype(float), rows.astype(float))
+        if fitted is None:
+            return False
+        centre_c, centre_r, radius = fitted
     shape = prepared.mask.shape
-    if not math.isfinite(fit.radius_m) or fit.radius_m < 2 or fit.radius_m > 2 * max(shape):
+    if not math.isfinite(radius) or radius < 2 or radius > 2 * max(shape):
         return False
-    centre_c, centre_r = fit.center_m
     # one taxel per step: the contact's walls are at least 2 taxels thick after smoothing
-    steps = np.arange(-_DIAMETER_REACH * fit.radius_m, _DIAMETER_REACH * fit.radius_m, 1.0)
-    cols_at = np.rint(centre_c + _COSINES * steps).astype(int)
-    rows_at = np.rint(centre_r + _SINES * steps).astype(int)
-    # samples off the array read the zero row and column appended to the mask (index -1
-    # wraps to them)
-    np.minimum(np.maximum(cols_at, -1, out=cols_at), shape[1], out=cols_at)
-    np.minimum(np.maximum(rows_at, -1, out=rows_at), shape[0], out=rows_at)
-    padded = cv2.copyMakeBorder(prepared.mask, 0, 1, 0, 1, cv2.BORDER_CONSTANT, value=0)
-    touched = padded[rows_at, cols_at] != 0
+    steps = np.arange(-_DIAMETER_REACH * radius, _DIAMETER_REACH * radius, 1.0)
+    # the samples' columns (first 16 rows) and rows (last 16), rounded to taxels
+    at = _DIRECTIONS * steps
+    at[:_DIAMETERS] += centre_c
+    at[_DIAMETERS:] += centre_r
+    at = np.rint(at, out=at).astype(np.float32)
+    # the nearest taxel of each sample, 0 off the array: a remap with whole-number maps
+    # (exact in float32) reads them in one call
+    touched = cv2.remap(
+        prepared.mask,
+        at[:_DIAMETERS],
+        at[_DIAMETERS:],
+        cv2.INTER_NEAREST,
+        borderMode=cv2.BORDER_CONSTANT,
+        borderValue=0,
+    )
+    touched = touched != 0
     crossed = touched[:, 1:] != touched[:, :-1]
     middle = steps.size // 2
     before = np.add.reduce(crossed[:, :middle], axis=1)

@@ -30,7 +30,7 @@ import numpy as np
 from taxel._validation import check_finite, check_range
 from taxel.features._sensor import cover_blur, cover_depth, hexagonal_resampled, pitch_pair
 
-__all__ = ["Prepared", "contact_box", "prepare"]
+__all__ = ["Prepared", "prepare"]
 
 # Contact thresholds, in units of the smoothed image's noise sigma (k) or of the contrast (f).
 # The baseline is the minimum of the smoothed image, which lies about 3-4 sigma below the
@@ -58,9 +58,12 @@ _MAD = 1.4826
 _LAPLACE_GAIN = math.sqrt(1.25)
 
 
-@dataclass(frozen=True)
+@dataclass(eq=False)
 class Prepared:
     """A validated tactile image with its smoothed version and contact mask (internal).
+
+    Read-only by convention: not frozen, since a frozen dataclass sets each of its fields
+    through ``object.__setattr__`` and costs microseconds to build.
 
     Attributes
     ----------
@@ -102,7 +105,10 @@ class Prepared:
         `cv2.findContours` gives them), when segmentation found them; else None.
     memo : dict
         Intermediates one feature computes and another reuses (image moments, the
-        contact's bounding box).
+        contact's bounding box and windows, see `taxel.features._window`).
+    left_out : float
+        Largest value of `smooth` out of the contact, or a bound it stays under: `low`
+        when no region above `low` was left out of `mask` (+inf when not known).
     """
 
     image: np.ndarray
@@ -123,9 +129,10 @@ class Prepared:
     residual: np.ndarray | None = None
     residual_step: int = 1
     outlines: tuple[np.ndarray, ...] | None = None
-    memo: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
+    memo: dict[Any, Any] = field(default_factory=dict, repr=False, compare=False)
     blur: float = 0.0
     cover_depth: float = 0.0
+    left_out: float = math.inf
 
     @property
     def present(self) -> bool:
@@ -141,15 +148,6 @@ class Prepared:
     def mean_pitch(self) -> float:
         """Geometric mean of the row and column pitch [m]."""
         return math.sqrt(self.taxel_area)
-
-
-def contact_box(prepared: Prepared) -> tuple[int, int, int, int]:
-    """(left, top, width, height) of the contact mask (internal; kept in ``prepared.memo``)."""
-    box = prepared.memo.get("box")
-    if box is None:
-        left, top, width, height = cv2.boundingRect(prepared.mask)
-        box = prepared.memo["box"] = (left, top, width, height)
-    return box
 
 
 def component_outlines(
@@ -211,11 +209,12 @@ def laplacian_residual(image: np.ndarray, step: int = 1) -> np.ndarray:
 
 def noise_from_residual(residual: np.ndarray) -> float:
     """Noise sigma from Laplacian residuals (any shape): 1.4826 MAD / sqrt(1.25)."""
-    values = np.abs(residual).ravel()
+    values = np.abs(residual).ravel()  # a new array: partitioned in place below
     if values.size == 0:
         return 0.0
     middle = values.size // 2
-    return _MAD * float(np.partition(values, middle)[middle]) / _LAPLACE_GAIN
+    values.partition(middle)
+    return _MAD * float(values[middle]) / _LAPLACE_GAIN
 
 
 def _noise_sigma(residual: np.ndarray) -> float:
@@ -334,18 +333,24 @@ def prepare(
             mask=candidates,
             labels=candidates,
             n_regions=1,
+            left_out=low,
             outlines=cast(tuple[np.ndarray, ...], outlines),  # cv2 gives a tuple
             **common,
         )
     # several candidate regions (a contact and specks of noise, scratches), usually one
     # seeded: the peak's, which a flood fill from the peak gives more cheaply than labelling
-    seeds = (smooth >= high).view(np.uint8)
     filled = np.zeros((values.shape[0] + 2, values.shape[1] + 2), np.uint8)
     cv2.floodFill(candidates, filled, peak_at, 1, 0, 0, _FILL_8 | cv2.FLOODFILL_MASK_ONLY)
     region = np.ascontiguousarray(filled[1:-1, 1:-1])
-    if cv2.countNonZero(seeds & region) == cv2.countNonZero(seeds):
+    # the largest value left out: of the other candidates (the rest lies under `low`);
+    # under `high` (in float32, as the seeds' comparison), none of them holds a seed
+    left_out = cv2.minMaxLoc(smooth, candidates ^ region)[1]
+    if left_out < np.float32(high):
         found = component_outlines(region, outlines, hierarchy)
-        return Prepared(mask=region, labels=region, n_regions=1, outlines=found, **common)
+        return Prepared(
+            mask=region, labels=region, n_regions=1, outlines=found, left_out=left_out, **common
+        )
+    seeds = (smooth >= high).view(np.uint8)
     count, labels = cv2.connectedComponents(candidates, connectivity=8, ltype=cv2.CV_32S)
     seeded = np.bincount(labels[seeds.view(bool)], minlength=count) > 0
     seeded[0] = False

@@ -9,8 +9,10 @@ import numpy as np
 
 from taxel.features._contact import Contact, region_moments
 from taxel.features._fitting import CircleFit, LineFit, fit_line_and_circle
-from taxel.features._image import Prepared, contact_box
+from taxel.features._image import Prepared
+from taxel.features._moments import binary_moments
 from taxel.features._outline import lobes
+from taxel.features._window import contact_box, contact_window
 
 __all__ = [
     "band_fits",
@@ -35,39 +37,48 @@ def _main_region(prepared: Prepared, contact: Contact) -> np.ndarray:
     return (prepared.labels == int(np.argmax(counts))).view(np.uint8)
 
 
-def half_region(prepared: Prepared, main: np.ndarray) -> tuple[np.ndarray, float, bool, dict]:
-    """The main region above half its peak: mask, major axis [taxels], flat top, moments.
+def half_region(
+    prepared: Prepared, main: np.ndarray
+) -> tuple[np.ndarray, tuple[int, int], float, bool, dict]:
+    """The main region above half its peak: mask, origin, major axis [taxels], flatness, moments.
 
     The region is taken on the unsmoothed image at half its own peak, so that the
     smoothing does not widen it; flatness is judged on the smoothed image, against noise.
-    The moments are the region's binary ones, as `cv2.moments` gives them.
+    Its mask covers the contact's window (see `contact_window`), whose first taxel is at
+    `origin` (column, row); the moments are the region's binary ones, as `cv2.moments`
+    gives them on the whole image.
     """
-    peak = cv2.minMaxLoc(prepared.image, main)[1]
-    region = (prepared.image >= 0.5 * (prepared.baseline + peak)).view(np.uint8) & main
+    # everything is read in the contact's window: `main` is 0 outside it
+    window = contact_window(prepared)
+    image, smooth, main = prepared.image[window], prepared.smooth[window], main[window]
+    top, left = window[0].start, window[1].start
+    peak = cv2.minMaxLoc(image, main)[1]
+    region = (image >= 0.5 * (prepared.baseline + peak)).view(np.uint8) & main
     # with one region, the smoothed image's peak is the contact's
-    top = prepared.peak if main is prepared.mask else cv2.minMaxLoc(prepared.smooth, main)[1]
-    span = top - prepared.baseline
-    moments = cv2.moments(region, binaryImage=True)
+    highest = prepared.peak if prepared.n_regions == 1 else cv2.minMaxLoc(smooth, main)[1]
+    span = highest - prepared.baseline
+    moments = binary_moments(region, top, left)
     count = moments["m00"]
     if count == 0:
-        return region, 0.0, False, moments
-    half_area = cv2.countNonZero(
-        (prepared.smooth >= prepared.baseline + 0.5 * span).view(np.uint8) & main
-    )
-    top_area = cv2.countNonZero(
-        (prepared.smooth >= prepared.baseline + 0.9 * span).view(np.uint8) & main
-    )
+        return region, (left, top), 0.0, False, moments
+    half_area = cv2.countNonZero((smooth >= prepared.baseline + 0.5 * span).view(np.uint8) & main)
+    top_area = cv2.countNonZero((smooth >= prepared.baseline + 0.9 * span).view(np.uint8) & main)
     var_y, var_x = moments["mu02"] / count + 1 / 12, moments["mu20"] / count + 1 / 12
     root = math.hypot((var_x - var_y) / 2, moments["mu11"] / count)
     flat = top_area >= _FLAT_TOP * max(half_area, 1)
-    return region, 4.0 * math.sqrt((var_x + var_y) / 2 + root), flat, moments
+    return region, (left, top), 4.0 * math.sqrt((var_x + var_y) / 2 + root), flat, moments
 
 
 def band_fits(prepared: Prepared, main: np.ndarray) -> tuple[LineFit, CircleFit, float]:
     """Weighted centre line and circle of a band (taxel units), and its length [taxels]."""
-    # the band's taxels in row-major order, as np.nonzero gives them
+    # the band's taxels in row-major order, as np.nonzero gives them, found in the
+    # contact's window (`main` is 0 outside it)
+    window = contact_window(prepared)
+    main = main[window]
     x, y = cv2.findNonZero(main).reshape(-1, 2).T.astype(float, order="C")
-    weight = prepared.smooth[main.view(bool)] - np.float32(prepared.baseline)
+    x += window[1].start
+    y += window[0].start
+    weight = prepared.smooth[window][main.view(bool)] - np.float32(prepared.baseline)
     np.maximum(weight, 1e-12, out=weight)
     line, circle = fit_line_and_circle(x, y, weight.astype(float))
     along = math.cos(line.angle_rad) * x
@@ -114,15 +125,21 @@ def region_measures(
     return main, thickness, float(binary["m00"]), float(concentration)
 
 
-def three_lobes(prepared: Prepared, half: np.ndarray, moments: dict | None = None) -> float:
+def three_lobes(
+    prepared: Prepared,
+    half: np.ndarray,
+    moments: dict | None = None,
+    origin: tuple[int, int] = (0, 0),
+) -> float:
     """3rd harmonic of the outline of the main region above half its peak.
 
-    `moments`: the region's binary moments, if already computed (see `half_region`).
+    `moments`: the region's binary moments, if already computed (see `half_region`);
+    `origin`: where the first taxel of `half` lies in the image (column, row).
     """
-    outlines, _ = cv2.findContours(half, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_NONE)
+    outlines, _ = cv2.findContours(half, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_NONE, offset=origin)
     if not outlines:
         return 0.0
     if moments is None:
-        moments = cv2.moments(half, binaryImage=True)
+        moments = binary_moments(half, origin[1], origin[0])
     centre = (moments["m10"] / moments["m00"], moments["m01"] / moments["m00"])
     return lobes(max(outlines, key=len), centre, 3)

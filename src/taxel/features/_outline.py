@@ -7,10 +7,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import cast
 
+import cv2
 import numpy as np
 
-from taxel.features._fitting import dot, line_fit_core, mean, std, taubin_circle
+from taxel.features._fitting import centred, dot, line_through, std, taubin_circle
 
 __all__ = [
     "bends",
@@ -55,27 +57,44 @@ def _spread(residual: np.ndarray) -> float:
     return std(np.abs(residual, out=residual))
 
 
-def _line_spread(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
-    """Band-aware spread about the best line, and that line's direction (cos, sin)."""
-    fit = line_fit_core(x, y)
-    cosine, sine = math.cos(fit.angle_rad), math.sin(fit.angle_rad)
+Centred = tuple[float, float, float, np.ndarray]  # see `taxel.features._fitting.centred`
+
+
+def _line_spread(
+    x: np.ndarray, y: np.ndarray, points: Centred | None = None
+) -> tuple[float, float, float]:
+    """Band-aware spread about the best line, and that line's direction (cos, sin).
+
+    `points`: (x, y) as `centred` gives them, if already made.
+    """
+    angle, offset, _ = line_through(points or centred(x, y))
+    cosine, sine = math.cos(angle), math.sin(angle)
     residual = -sine * x
     residual += cosine * y
-    residual -= fit.offset_m
+    residual -= offset
     return _spread(residual), cosine, sine
 
 
-def line_spread(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
-    """Band-aware spread about the best line, and the points' length along it."""
-    spread, cosine, sine = _line_spread(x, y)
+def line_spread(
+    x: np.ndarray, y: np.ndarray, points: Centred | None = None
+) -> tuple[float, float]:
+    """Band-aware spread about the best line, and the points' length along it.
+
+    `points`: (x, y) as `centred` gives them, if already made.
+    """
+    spread, cosine, sine = _line_spread(x, y, points)
     along = cosine * x
     along += sine * y
     return spread, float(np.maximum.reduce(along)) - float(np.minimum.reduce(along))
 
 
-def circle_spread(x: np.ndarray, y: np.ndarray) -> float:
-    """Band-aware spread about the best (Taubin) circle; inf for collinear points."""
-    circle = taubin_circle(x, y)
+def circle_spread(x: np.ndarray, y: np.ndarray, points: Centred | None = None) -> float:
+    """Band-aware spread about the best (Taubin) circle; inf for collinear points.
+
+    `points`: (x, y) as `centred` gives them, if already made (its third row is
+    overwritten).
+    """
+    circle = taubin_circle(x, y, points)
     if circle is None:
         return math.inf
     centre_x, centre_y, radius = circle
@@ -97,14 +116,16 @@ def sagitta(radius: float, chord: float) -> float:
     return radius if half >= radius else radius - math.sqrt(radius**2 - half**2)
 
 
-def two_arms(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
+def two_arms(x: np.ndarray, y: np.ndarray, points: Centred | None = None) -> tuple[float, float]:
     """Fit two straight arms meeting at a vertex: (worst arm spread, interior angle).
 
     The arms' far ends are the point farthest from the centroid and the point farthest
     from that one; the vertex is the point farthest from the chord between them.
+    `points`: (x, y) as `centred` gives them, if already made.
     """
+    terms = (points or centred(x, y))[3]
     # plain floats for the scalar arithmetic (NumPy scalars cost several times more)
-    far_a = int(((x - mean(x)) ** 2 + (y - mean(y)) ** 2).argmax())
+    far_a = int((terms[0] ** 2 + terms[1] ** 2).argmax())
     ax, ay = x[far_a].item(), y[far_a].item()
     far_b = int(((x - ax) ** 2 + (y - ay) ** 2).argmax())
     bx, by = x[far_b].item(), y[far_b].item()
@@ -167,17 +188,25 @@ def free_chains(
     finite face or tip, not an edge crossing the array.
     """
     rows, cols = shape
-    # the taxels where an outline is free: inside the margin, off the gaps' walls
-    allowed = np.zeros(shape, np.uint8)
-    inner = (slice(margin, rows - margin), slice(margin, cols - margin))
-    allowed[inner] = explained[inner] == 0
+    # the taxels where an outline is free: inside the margin, off the gaps' walls (with no
+    # gap, the margin alone, tested on the outline's points)
+    allowed = None
+    if cv2.countNonZero(explained):
+        allowed = np.zeros(shape, np.uint8)
+        inner = (slice(margin, rows - margin), slice(margin, cols - margin))
+        allowed[inner] = explained[inner] == 0
     chains = []
     for contour in contours:
         count = contour.shape[0]
         if count < _MIN_CHAIN:
             continue
         points = contour.reshape(count, 2)
-        free = allowed[points[:, 1], points[:, 0]]
+        if allowed is None:
+            inside = (margin, margin), (cols - 1 - margin, rows - 1 - margin)
+            free = cast(np.ndarray, cv2.inRange(contour, *inside)).reshape(count)
+            free >>= 7  # 255 -> 1, as `allowed` holds
+        else:
+            free = allowed[points[:, 1], points[:, 0]]
         if not 0 < np.count_nonzero(free) < count:
             continue
         # start on a taxel that is not free, so that no free piece wraps around the end

@@ -56,7 +56,7 @@ import numpy as np
 
 from taxel._validation import check_positive
 from taxel.features._contact import Contact, contact_regions
-from taxel.features._fitting import CircleFit, LineFit, fit_line_and_circle
+from taxel.features._fitting import CircleFit, LineFit, centred, fit_line_and_circle
 from taxel.features._gaps import gaps_core
 from taxel.features._image import Prepared, prepare
 from taxel.features._measures import (
@@ -209,7 +209,8 @@ def _free_outline(
     straight = True
     best_corner = 0.0
     for x, y in chains:
-        single, extent = line_spread(x, y)
+        points = centred(x, y)  # shared by the line, the arms and the circle
+        single, extent = line_spread(x, y, points)
         allowed = tolerance(extent)
         if single <= allowed and extent >= _STRAIGHT_TAXELS:
             continue  # straight: no vertex, no curve
@@ -217,10 +218,10 @@ def _free_outline(
             straight = False  # too short to tell straight from curved
             continue
         straight = False
-        arms = two_arms(x, y)
+        arms = two_arms(x, y, points)
         if not bends(arms):
             continue  # the corner score is 0 whatever the circle, and no corner is found
-        round_spread = circle_spread(x, y)
+        round_spread = circle_spread(x, y, points)
         corner = corner_score(min(single, round_spread), arms)
         # a vertex: two straight arms, which fit better than one circle (a curved edge,
         # such as a hole cut by the array's corner, is fitted as well by a circle)
@@ -303,7 +304,7 @@ def shape_core(
     region = contact.regions[0]
     compact = region.minor_axis_m >= _COMPACT_RATIO * region.major_axis_m
     if compact and not region.touches_border:
-        half, size, flat, moments = half_region(prepared, main)
+        half, origin, size, flat, moments = half_region(prepared, main)
         smallest = max(point_size, _POINT_PITCHES * pitch)
         if flat:
             limit = smallest + prepared.blur + 0.5 * pitch
@@ -311,7 +312,7 @@ def shape_core(
             limit = math.hypot(smallest, prepared.blur) + 0.5 * pitch
         if size * pitch <= limit:
             return result("point", ramp(limit / (size * pitch), 1.0, 1.3), 0.0, "small contact")
-        three = three_lobes(prepared, half, moments) if size >= _LOBES_TAXELS else 0.0
+        three = three_lobes(prepared, half, moments, origin) if size >= _LOBES_TAXELS else 0.0
         corner = ramp(three, 0.5 * _LOBES, 1.5 * _LOBES)
         if three >= _LOBES:
             return result("corner", corner, corner, "three-lobed compact contact (vertex)")

@@ -12,6 +12,7 @@ import numpy as np
 
 from taxel._validation import as_finite_array
 from taxel.features._image import Prepared, prepare
+from taxel.features._window import contact_area, contact_window
 
 __all__ = ["ContactPlane", "contact_plane", "plane_core"]
 
@@ -61,16 +62,22 @@ def plane_core(
     """
     if not prepared.present:
         return ContactPlane(0.0, 0.0, 0.0, None, None, None)
-    mask = prepared.mask
+    # the erosion reaches 2 taxels: on the contact's window grown by 2, it is the whole
+    # image's erosion there (and 0 elsewhere)
+    grown = contact_window(prepared, 2)
+    r0, c0 = grown[0].start, grown[1].start
+    mask = prepared.mask[grown]
     interior = cv2.erode(mask, _ERODE)
     if not cv2.countNonZero(interior):
         interior = mask
-    mean, deviation = cv2.meanStdDev(prepared.smooth, mask=interior)
+    mean, deviation = cv2.meanStdDev(prepared.smooth[grown], mask=interior)
     above = float(mean[0, 0]) - prepared.baseline
     spread = float(deviation[0, 0])
     uniformity = min(max(1.0 - spread / above, 0.0), 1.0) if above > 0 else 0.0
     if contours is None:
-        contours = list(cv2.findContours(mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)[0])
+        contours = list(
+            cv2.findContours(mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE, offset=(c0, r0))[0]
+        )
     if len(contours) == 1:
         points = contours[0]
     else:
@@ -79,13 +86,15 @@ def plane_core(
     hull_area = float(cv2.contourArea(hull)) if hull is not None else 0.0
     perimeter = cv2.arcLength(hull, True) if hull is not None else 0.0
     # a taxel is a unit square: the hull through taxel centres misses half a taxel all round
-    area = float(cv2.countNonZero(mask))
+    area = float(contact_area(prepared))
     fill = min(area / (hull_area + 0.5 * perimeter + 1), 1.0)
     normal = tilt = rms = None
     if depth is not None:
         rows, cols = np.nonzero(interior)  # the rim's taxels are half in contact
         if rows.size >= 3:
-            shape = mask.shape
+            rows += r0
+            cols += c0
+            shape = prepared.mask.shape
             x = (cols - (shape[1] - 1) / 2) * prepared.pitch[1]
             y = (rows - (shape[0] - 1) / 2) * prepared.pitch[0]
             z = -depth[rows, cols]  # depth is into the cover, along -z of the sensor frame

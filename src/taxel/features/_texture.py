@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any
 
 import cv2
@@ -11,7 +12,8 @@ import numpy as np
 
 from taxel._validation import check_range
 from taxel.features._fitting import dot
-from taxel.features._image import Prepared, contact_box, noise_from_residual, prepare
+from taxel.features._image import Prepared, noise_from_residual, prepare
+from taxel.features._window import WHOLE_IMAGE, contact_area, contact_box, contact_window
 
 __all__ = ["Texture", "high_points", "texture_core", "texture_measures"]
 
@@ -33,9 +35,8 @@ _RING_POINTS = 32
 # Octave bands of spatial frequency, from the Nyquist limit down: [f/2, f], [f/4, f/2], ...
 _OCTAVES = 4
 _SPECTRUM_CACHE: dict[tuple, tuple[Any, ...]] = {}
-_RING_CACHE: dict[tuple[float, int], tuple[np.ndarray, ...]] = {}
 _SQUARES: dict[int, np.ndarray] = {}
-_THREE = np.ones((3, 3), np.uint8)
+_AROUND = np.array([[1, 1, 1], [1, 0, 1], [1, 1, 1]], np.uint8)  # the 8 neighbours
 
 
 @dataclass(frozen=True)
@@ -108,24 +109,25 @@ def _spectrum_layout(shape: tuple[int, int], pitch: tuple[float, float]) -> tupl
     return layout
 
 
-def _offsets(radius: float, step: int) -> tuple[np.ndarray, ...]:
-    """Row and column offsets of the ring at `radius`, and of the curvatures' neighbours.
+@lru_cache(maxsize=64)
+def _padded_offsets(radius: float, step: int, width: int) -> tuple[int, np.ndarray, np.ndarray]:
+    """Padding, and flat offsets of the ring and of the curvatures' neighbours (cached).
 
-    The ring has `_RING_POINTS` points; the eight neighbours lie `step` away (E, W, S, N,
-    SE, SW, NE, NW). Each is a (1, n) row, cached by (radius, step).
+    The ring at `radius` has `_RING_POINTS` points; the eight neighbours lie `step` away
+    (E, W, S, N, SE, SW, NE, NW). Offsets are into an image `width` columns wide padded by
+    the returned number of taxels on every side, flattened; each is a read-only (1, n) row.
     """
-    key = (radius, step)
-    offsets = _RING_CACHE.get(key)
-    if offsets is None:
-        angles = np.arange(_RING_POINTS) * (2 * math.pi / _RING_POINTS)
-        offsets = (
-            np.rint(radius * np.sin(angles)).astype(np.intp)[None, :],
-            np.rint(radius * np.cos(angles)).astype(np.intp)[None, :],
-            np.array([[0, 0, step, -step, step, step, -step, -step]], np.intp),
-            np.array([[step, -step, 0, 0, step, -step, step, -step]], np.intp),
-        )
-        _RING_CACHE[key] = offsets
-    return offsets
+    angles = np.arange(_RING_POINTS) * (2 * math.pi / _RING_POINTS)
+    ring_rows = np.rint(radius * np.sin(angles)).astype(np.intp)
+    ring_cols = np.rint(radius * np.cos(angles)).astype(np.intp)
+    near_rows = np.array([0, 0, step, -step, step, step, -step, -step], np.intp)
+    near_cols = np.array([step, -step, 0, 0, step, -step, step, -step], np.intp)
+    pad = int(max(np.abs(ring_rows).max(), np.abs(ring_cols).max(), step))
+    stride = width + 2 * pad
+    ring = (ring_rows * stride + ring_cols)[None, :]
+    near = (near_rows * stride + near_cols)[None, :]
+    ring.flags.writeable = near.flags.writeable = False
+    return pad, ring, near
 
 
 def _square(size: int) -> np.ndarray:
@@ -134,15 +136,6 @@ def _square(size: int) -> np.ndarray:
     if kernel is None:
         kernel = _SQUARES[size] = np.ones((size, size), np.uint8)
     return kernel
-
-
-def _read(image: np.ndarray, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
-    """`image` at (rows, cols), each clipped to the image (in place) as a replicated border."""
-    np.maximum(rows, 0, out=rows)
-    np.minimum(rows, image.shape[0] - 1, out=rows)
-    np.maximum(cols, 0, out=cols)
-    np.minimum(cols, image.shape[1] - 1, out=cols)
-    return image[rows, cols]
 
 
 def _first_of_each(points: np.ndarray, labels: np.ndarray) -> np.ndarray:
@@ -157,6 +150,24 @@ def _first_of_each(points: np.ndarray, labels: np.ndarray) -> np.ndarray:
     return points[[first[label] for label in sorted(first)]]
 
 
+def _contact_residual(prepared: Prepared) -> np.ndarray:
+    """The noise residual of `prepare` at the contact's taxels, in raster order.
+
+    Read in the contact's window: row i of the residual is row 1 + i * step of the image,
+    and column j is column 1 + j.
+    """
+    step, residual, mask = prepared.residual_step, prepared.residual, prepared.mask
+    assert residual is not None
+    if mask.size <= WHOLE_IMAGE:
+        return residual[mask[1:-1:step, 1:-1].view(bool)]
+    rows, cols = contact_window(prepared)
+    first, last = max(-((1 - rows.start) // step), 0), -((1 - rows.stop) // step)
+    left, right = max(cols.start - 1, 0), cols.stop - 1
+    residual = residual[first:last, left:right]
+    on_rows = mask[1 + first * step :: step, 1 + left : 1 + right]
+    return residual[on_rows[: residual.shape[0], : residual.shape[1]].view(bool)]
+
+
 def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[int, float]:
     """Number and mean height above the baseline of the contact's high points (internal).
 
@@ -169,8 +180,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     # maxima are sought in the contact only: work on its bounding box, grown by the reach of
     # the smoothing and of the ring, so that the crop's edges do not change the result
     reach = 2 * math.ceil(3 * sigma) + 1
-    local_sigma = sigma
-    radius = _RING_RADIUS * local_sigma
+    radius = _RING_RADIUS * sigma
     grow = reach // 2 + math.ceil(radius) + 2
     left, top, width, height = contact_box(prepared)
     rows, cols = prepared.image.shape
@@ -181,33 +191,44 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     lowest = cv2.erode(smooth, _square(2 * math.ceil(radius) + 1))
     raw_noise = prepared.raw_noise
     if prepared.residual is not None:
-        step = prepared.residual_step
-        inside = prepared.residual[prepared.mask[1:-1:step, 1:-1].view(bool)]
-        raw_noise = max(raw_noise, noise_from_residual(inside[::4]))
+        raw_noise = max(raw_noise, noise_from_residual(_contact_residual(prepared)[::4]))
     # white noise of sigma n leaves n / (2 sqrt(pi) sigma) after a Gaussian of sigma
     noise = raw_noise / (2.0 * math.sqrt(math.pi) * sigma)
     margin = np.float32(max(_MAXIMUM_SIGMAS * noise, 1e-9 * prepared.contrast, 1e-30))
-    # a plateau of equal values is one maximum, not many: one taxel per connected plateau
     np.add(lowest, margin, out=lowest)
-    peaks = (smooth >= cv2.dilate(smooth, _THREE)) & (smooth > lowest)
+    # the largest of the 8 neighbours: a maximum is >= it, and equal to it beside another
+    around = cv2.dilate(smooth, _AROUND)
+    peaks = (smooth >= around) & (smooth > lowest)
     peaks = peaks.view(np.uint8) & mask
     points = cv2.findNonZero(peaks)
     if points is None:
         return 0, 0.0
     points = points.reshape(-1, 2)
-    if points.shape[0] > 1:
+    point_rows, point_cols = points[:, 1], points[:, 0]
+    heights = smooth[point_rows, point_cols]
+    # a plateau of equal values is one maximum, not many: one taxel per connected plateau,
+    # the first in the order of the plateaus' labels; two maxima touch only where one
+    # equals a neighbour, so without such a tie each maximum is its own plateau
+    tied = points.shape[0] > 1 and np.count_nonzero(around[point_rows, point_cols] == heights)
+    if tied:
         points = _first_of_each(points, cv2.connectedComponents(peaks)[1])
-    ring_rows, ring_cols, near_rows, near_cols = _offsets(radius, max(int(round(local_sigma)), 1))
-    point_rows, point_cols = points[:, 1:2], points[:, 0:1]
-    heights = smooth[point_rows[:, 0], point_cols[:, 0]]
-    ring = _read(smooth, point_rows + ring_rows, point_cols + ring_cols)
+        point_rows, point_cols = points[:, 1], points[:, 0]
+        heights = smooth[point_rows, point_cols]
+    # the ring and the neighbours are read in a copy padded by replication, as clipping
+    # each index to the image would, with one flat index per value
+    pad, ring_offsets, near_offsets = _padded_offsets(
+        radius, max(int(round(sigma)), 1), smooth.shape[1]
+    )
+    padded = cv2.copyMakeBorder(smooth, pad, pad, pad, pad, cv2.BORDER_REPLICATE).ravel()
+    centres = ((point_rows + pad) * (smooth.shape[1] + 2 * pad) + (point_cols + pad))[:, None]
+    ring = np.take(padded, centres + ring_offsets)
     high = heights > np.maximum.reduce(ring, axis=1) + margin
     if not np.count_nonzero(high):
         return 0, 0.0
     # principal curvatures by central differences one sigma each way, on the points that
     # stand above their ring
     heights = heights[high]
-    near = _read(smooth, point_rows[high] + near_rows, point_cols[high] + near_cols)
+    near = np.take(padded, centres[high] + near_offsets)
     near -= heights[:, None]  # E, W, S, N, SE, SW, NE, NW
     fxx, fyy = near[:, 0] + near[:, 1], near[:, 2] + near[:, 3]
     fxy = 0.25 * (near[:, 4] - near[:, 5] - near[:, 6] + near[:, 7])
@@ -216,7 +237,14 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     count = int(np.count_nonzero(peaked))
     if not count:
         return 0, 0.0
-    return count, float(heights[peaked].mean()) - prepared.baseline
+    heights = heights[peaked]
+    if count > 1 and not tied:
+        # the mean height sums the high points in the order of their plateaus' labels (the
+        # rounding depends on it); labelled only now that few points are left
+        chosen = np.flatnonzero(high)[peaked]
+        labels = cv2.connectedComponents(peaks)[1][point_rows[chosen], point_cols[chosen]]
+        heights = heights[np.argsort(labels)]
+    return count, float(heights.mean()) - prepared.baseline
 
 
 def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Texture:
@@ -224,9 +252,10 @@ def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Textur
     if not prepared.present:
         return Texture(0, 0.0, 0.0, None, None, (0.0,) * _OCTAVES, 0.0)
     n_maxima, mean_height = high_points(prepared, sigma=sigma)
-    area = float(cv2.countNonZero(prepared.mask)) * prepared.taxel_area
+    area = float(contact_area(prepared)) * prepared.taxel_area
     density = n_maxima / area
-    mean, deviation = cv2.meanStdDev(prepared.smooth, mask=prepared.mask)
+    window = contact_window(prepared)
+    mean, deviation = cv2.meanStdDev(prepared.smooth[window], mask=prepared.mask[window])
     above = float(mean[0, 0]) - prepared.baseline
     roughness = float(deviation[0, 0]) / above if above > 0 else 0.0
     # ripple: the whole image minus its mean, Hann-windowed (the seed measures texture over
@@ -242,7 +271,7 @@ def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Textur
     total = float(power.sum(dtype=np.float64))
     if total <= 0:
         return Texture(n_maxima, mean_height, density, None, None, (0.0,) * _OCTAVES, roughness)
-    sums = np.add.reduceat(power[order].astype(np.float64), starts)[:_OCTAVES]
+    sums = np.add.reduceat(np.take(power, order).astype(np.float64), starts)[:_OCTAVES]
     if empty is not None:
         sums[empty] = 0.0  # an empty band holds nothing
     bands = sums / total

@@ -1,0 +1,58 @@
+"""Where the contact lies in a prepared image: its box and windows, and its area (internal).
+
+Features read sums, counts and extremes over the contact in the window that holds it
+rather than over the whole image; each is computed once and kept in ``prepared.memo``.
+"""
+
+from __future__ import annotations
+
+import cv2
+
+from taxel.features._image import Prepared
+
+__all__ = ["WHOLE_IMAGE", "contact_area", "contact_box", "contact_window"]
+
+# Images of at most this many taxels are read whole (see `contact_window`).
+WHOLE_IMAGE = 32 * 32
+
+
+def contact_area(prepared: Prepared) -> int:
+    """Number of contact taxels (internal; the binary moments' m00 when they are known)."""
+    moments = prepared.memo.get("moments")
+    if moments is not None:
+        return int(moments[0]["m00"])
+    rows, cols = contact_window(prepared)
+    return cv2.countNonZero(prepared.mask[rows, cols])
+
+
+def contact_box(prepared: Prepared) -> tuple[int, int, int, int]:
+    """(left, top, width, height) of the contact mask (internal; kept in ``prepared.memo``)."""
+    box = prepared.memo.get("box")
+    if box is None:
+        left, top, width, height = cv2.boundingRect(prepared.mask)
+        box = prepared.memo["box"] = (left, top, width, height)
+    return box
+
+
+def contact_window(prepared: Prepared, margin: int = 0) -> tuple[slice, slice]:
+    """Rows and columns that hold every contact taxel (internal; kept in ``prepared.memo``).
+
+    The rows of the contact's bounding box grown by `margin` taxels (within the image),
+    across the whole width: sums, counts, extremes and filters of that reach over the
+    contact can be computed there alone, on memory in one piece (NumPy works row by row
+    on a narrower window, which costs more than the taxels it saves). The whole image when
+    it is small (up to 32 x 32), where cropping costs more than it saves.
+    """
+    window = prepared.memo.get(("window", margin))
+    if window is None:
+        rows, cols = prepared.mask.shape
+        if prepared.mask.size <= WHOLE_IMAGE:
+            window = (slice(0, rows), slice(0, cols))
+        else:
+            _, top, _, height = contact_box(prepared)
+            window = (
+                slice(max(top - margin, 0), min(top + height + margin, rows)),
+                slice(0, cols),
+            )
+        prepared.memo[("window", margin)] = window
+    return window
