@@ -101,6 +101,9 @@ def test_bad_sensor_specifications():
     sensor = make_sensor("resistive16")
     with pytest.raises(ValueError, match="`frame_rate` must be > 0"):
         type(sensor)(**{**sensor.__dict__, "frame_rate": 0.0})
+    for levels in (3, 20.5, True):
+        with pytest.raises(ValueError, match="`calibration_levels` must be an integer >= 4"):
+            type(sensor)(**{**sensor.__dict__, "calibration_levels": levels})
 
 
 def test_capacitive_cells_with_their_own_modulus_feel_the_stress(presets):
