@@ -8,6 +8,7 @@ from __future__ import annotations
 import time
 
 import numpy as np
+from scipy import special
 
 from taxel.reconstruction import (
     ADMMSolver,
@@ -49,19 +50,32 @@ def contact_methods(spec) -> dict:
     }
 
 
-def contact_rows(sensors, loads, make_load, seeds: int, level: float = 0.01) -> list[dict]:
-    """Force, centroid and relative L2 error of each method on each (sensor, load, seed)."""
+def contact_rows(
+    sensors,
+    loads,
+    make_load,
+    seeds: int,
+    level: float = 0.01,
+    *,
+    first_seed: int = 0,
+    only: tuple[str, ...] | None = None,
+) -> list[dict]:
+    """Force, centroid and relative L2 error of each method (or of those labelled in
+    `only`) on each (sensor, load, seed), seeds from `first_seed` on."""
     rows = []
     for sensor, oversampling in sensors.items():
         spec = forward_model_preset(sensor, oversampling=oversampling)
         truth_operator = forward_operator(spec, boundary="zero", representation="fast")
         methods = contact_methods(spec)
-        for seed in range(seeds):
+        if only is not None:
+            methods = {label: method for label, method in methods.items() if label in only}
+        for seed in range(first_seed, first_seed + seeds):
             for load in loads:
                 rng = np.random.default_rng(5000 + 1000 * seed + loads.index(load))
                 truth = make_load(load, spec, rng)
                 clean = truth_operator.apply(truth)
                 frame = clean + rng.normal(0.0, level * spec.full_scale, clean.shape)
+                bound = shape_known_std(clean, level * spec.full_scale)
                 for label, (solver, options) in methods.items():
                     started = time.perf_counter()
                     result = solver.solve(frame, **options)
@@ -79,9 +93,24 @@ def contact_rows(sensors, loads, make_load, seeds: int, level: float = 0.01) -> 
                             "error": float(error),
                             "seconds": seconds,
                             "fallback": "instead" in result.message,
+                            "bound": bound,
                         }
                     )
     return rows
+
+
+def shape_known_std(clean: np.ndarray, sigma: float) -> float:
+    """Relative standard deviation of the total force that the best unbiased estimator
+    reaches when it knows the load's exact shape and position and only its scale is
+    unknown (Cramer-Rao: readings = s A t + white noise of std sigma, so std(s) =
+    sigma / |A t|). Any estimator that must also find the shape does no better on average."""
+    return float(sigma / np.linalg.norm(clean))
+
+
+def within_chance(std: float, tolerance: float = 0.02) -> float:
+    """Chance that an unbiased Gaussian estimate of relative std `std` lies within
+    `tolerance` of the truth: erf(tolerance / (std sqrt 2))."""
+    return float(special.erf(tolerance / (std * np.sqrt(2.0))))
 
 
 def contact_table(rows: list[dict], sensors, loads, *, timed: bool = True) -> list[str]:
@@ -117,6 +146,35 @@ def contact_table(rows: list[dict], sensors, loads, *, timed: bool = True) -> li
     return lines
 
 
+def bound_table(rows: list[dict], sensors, contacts) -> list[str]:
+    """Frames within 2 % of the force: the support method against the expectation for an
+    unbiased estimator told each load's exact shape (`shape_known_std`)."""
+    lines = [
+        "| sensor | load | frames | force std with the shape known (mean) | expected within "
+        "2 %, shape known | support: within 2 % | support: rms force error |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for sensor in sensors:
+        for load in contacts:
+            chosen = [
+                r
+                for r in rows
+                if (r["sensor"], r["load"], r["method"]) == (sensor, load, "support (library)")
+            ]
+            if not chosen:
+                continue
+            force = np.array([r["force"] for r in chosen])
+            bounds = np.array([r["bound"] for r in chosen])
+            expected = sum(within_chance(b) for b in bounds)
+            lines.append(
+                f"| {sensor} | {load} | {len(chosen)} | {bounds.mean():.2%} | "
+                f"{expected:.1f} ({expected / len(chosen):.0%}) | "
+                f"{np.sum(np.abs(force) <= 0.02)} ({np.mean(np.abs(force) <= 0.02):.0%}) | "
+                f"{np.sqrt(np.mean(force**2)):.2%} |"
+            )
+    return lines
+
+
 def contact_targets(
     rows: list[dict], contacts, sensor: str | None = None
 ) -> tuple[int, int, int, int]:
@@ -133,6 +191,20 @@ def contact_targets(
     shift = sum(r["centroid"] <= 0.1 for r in chosen)
     both = sum(abs(r["force"]) <= 0.02 and r["centroid"] <= 0.1 for r in chosen)
     return force, shift, both, len(chosen)
+
+
+def shape_known_expectation(rows: list[dict], contacts, sensor: str | None = None) -> float:
+    """Expected number of contact frames within 2 % of the force for an unbiased estimator
+    that knows each load's exact shape (`shape_known_std`): the most any method can hope
+    for on average."""
+    chosen = [
+        r
+        for r in rows
+        if r["method"] == "support (library)"
+        and r["load"] in contacts
+        and sensor in (None, r["sensor"])
+    ]
+    return sum(within_chance(r["bound"]) for r in chosen)
 
 
 # -- two-point resolution ------------------------------------------------------------------------
