@@ -137,6 +137,27 @@ def test_detector_finds_the_onsets(slip):
     assert 1e-7 < found.position_noise < 2e-5
 
 
+def test_static_backup_catches_what_the_piezo_misses(slip):
+    # a PVDF threshold no innovation reaches: only the static run-ahead can decide
+    deaf = _detector(piezo_threshold=1e9, backup_threshold=5.0)
+    gross = deaf.run(slip.static_frames, slip.piezo_frames, frame_rate=1000.0).first("gross")
+    alone = _detector(gross_threshold=5.0).run(slip.static_frames, frame_rate=1000.0)
+    assert gross.channel == "speed" and gross.frame == alone.first("gross").frame
+    # left out, nothing decides; and the earlier of the two channels wins
+    off = _detector(piezo_threshold=1e9, backup_threshold=None)
+    assert off.run(slip.static_frames, slip.piezo_frames, frame_rate=1000.0).first("gross") is None
+    both = _detector(backup_threshold=5.0).run(
+        slip.static_frames, slip.piezo_frames, frame_rate=1000.0
+    )
+    piezo = _detector(backup_threshold=None).run(
+        slip.static_frames, slip.piezo_frames, frame_rate=1000.0
+    )
+    first = min(piezo.first("gross").frame, gross.frame)
+    assert both.first("gross").frame == first
+    with pytest.raises(ValueError, match="`backup_threshold` must be > 0"):
+        SlipDetector(backup_threshold=-1.0)
+
+
 def test_no_alarm_on_a_hold_or_on_steady_sliding(hold, steady):
     held = detect_slip(hold.static_frames, hold.piezo_frames, frame_rate=1000.0)
     assert held.initial_state == "holding" and held.events == ()

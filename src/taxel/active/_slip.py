@@ -28,10 +28,11 @@ sliding, in which case no onset is reported. Then:
   runs ahead of where its recent motion would have put it (a line fitted to the positions
   of a reference window of 15 frames, ending 3 frames before, extrapolated to the current
   frame; the deviation along the direction of travel, in noise units and averaged over 2
-  frames, passes `gross_threshold`; channel 'speed'). With PVDF frames the run-ahead does
-  not decide: on the calibration trials it added premature alarms and no detection (the
-  Cattaneo-Mindlin shift speeds up without bound as the stick disc vanishes, which looks
-  like the start of sliding).
+  frames, passes `gross_threshold`; channel 'speed'). With PVDF frames the run-ahead
+  decides only past the higher `backup_threshold`: at `gross_threshold` it adds premature
+  alarms (the Cattaneo-Mindlin shift speeds up without bound as the stick disc vanishes,
+  which looks like the start of sliding), but above it, it catches most of the slips whose
+  onset the PVDF misses, 5-20 frames late.
 
 The default thresholds were set by `calibrate_slip_detector` on simulated calibration trials
 (`slip_trials` with seeds 101 and 303, 120 slip, 60 hold and 60 steady trials, the
@@ -64,6 +65,7 @@ __all__ = ["SlipDetection", "SlipDetector", "SlipEvent", "detect_slip"]
 # set on calibration trials by `calibrate_slip_detector` (see the module notes)
 GROSS_THRESHOLD = 5.0
 PIEZO_THRESHOLD = 15.0
+BACKUP_THRESHOLD = 8.0
 
 _REFERENCE = 15  # frames in the reference window of the speed
 _GAP = 3  # frames between the reference window and the current frame
@@ -162,9 +164,12 @@ class SlipDetector:
         deviations.
     gross_threshold : float, default 5.0
         Run-ahead of the pattern past its extrapolated track, in noise standard deviations
-        (decides gross slip only without PVDF frames).
+        (decides gross slip without PVDF frames).
     piezo_threshold : float, default 15.0
         CUSUM threshold h of the piezo channel.
+    backup_threshold : float or None, default 8.0
+        With PVDF frames, the run-ahead still decides gross slip past this threshold (a
+        backup for onsets the PVDF misses); None leaves it out.
     drift : float, default 2.0
         CUSUM drift nu: the squared innovation, in excess of its mean 1, that does not
         accumulate.
@@ -194,6 +199,7 @@ class SlipDetector:
         incipient_threshold: float = 5.0,
         gross_threshold: float = GROSS_THRESHOLD,
         piezo_threshold: float = PIEZO_THRESHOLD,
+        backup_threshold: float | None = BACKUP_THRESHOLD,
         drift: float = 2.0,
         cutoff: float = 160.0,
         rest_speed: float = 5e-3,
@@ -211,6 +217,11 @@ class SlipDetector:
         self.incipient_threshold = check_positive("incipient_threshold", incipient_threshold)
         self.gross_threshold = check_positive("gross_threshold", gross_threshold)
         self.piezo_threshold = check_positive("piezo_threshold", piezo_threshold)
+        self.backup_threshold = (
+            None
+            if backup_threshold is None
+            else check_positive("backup_threshold", backup_threshold)
+        )
         self.drift = check_positive("drift", drift, allow_zero=True)
         self.cutoff = check_positive("cutoff", cutoff)
         self.rest_speed = check_positive("rest_speed", rest_speed)
@@ -326,16 +337,17 @@ class SlipDetector:
         moved = np.nonzero(mean3[self.warm_up :] > limit)[0]
         if moved.size:
             found.append(("incipient", int(moved[0]) + self.warm_up, "displacement"))
-        # with PVDF frames the static run-ahead stays out: on the calibration trials it
-        # added only premature alarms (the Cattaneo-Mindlin shift accelerates as c -> 0)
-        channel, statistic, threshold = (
-            ("speed", speed_statistic, self.gross_threshold)
-            if np.all(np.isnan(piezo_statistic))
-            else ("piezo", piezo_statistic, self.piezo_threshold)
-        )
-        above = np.nonzero(np.nan_to_num(statistic) > threshold)[0]
-        if above.size:
-            found.append(("gross", int(above[0]), channel))
+        # with PVDF frames the static run-ahead decides only past the backup threshold: at
+        # its own it adds premature alarms (the Cattaneo-Mindlin shift accelerates as c -> 0)
+        channels = [("speed", speed_statistic, self.gross_threshold)]
+        if not np.all(np.isnan(piezo_statistic)):
+            channels = [("piezo", piezo_statistic, self.piezo_threshold)]
+            if self.backup_threshold is not None:
+                channels.append(("speed", speed_statistic, self.backup_threshold))
+        for channel, statistic, threshold in channels:
+            above = np.nonzero(np.nan_to_num(statistic) > threshold)[0]
+            if above.size:
+                found.append(("gross", int(above[0]), channel))
         gross = min(
             (item for item in found if item[0] == "gross"), default=None, key=lambda item: item[1]
         )

@@ -212,7 +212,8 @@ class SlipCalibration:
     Attributes
     ----------
     detector : SlipDetector
-        The detector with the chosen `gross_threshold` and `piezo_threshold`.
+        The detector with the chosen `gross_threshold`, `piezo_threshold` and
+        `backup_threshold`.
     evaluation : SlipEvaluation
         Its score on the calibration trials, with their PVDF frames.
     static_evaluation : SlipEvaluation
@@ -234,6 +235,7 @@ class SlipCalibration:
         return {
             "gross_threshold": self.detector.gross_threshold,
             "piezo_threshold": self.detector.piezo_threshold,
+            "backup_threshold": self.detector.backup_threshold,
             "false_alarm_budget": self.false_alarm_budget,
             "latency_frames": self.latency,
             "evaluation": self.evaluation.to_dict(),
@@ -249,6 +251,7 @@ def calibrate_slip_detector(
     early_tolerance: int = 2,
     gross_thresholds: Any = None,
     piezo_thresholds: Any = None,
+    backup_thresholds: Any = None,
     **settings: Any,
 ) -> SlipCalibration:
     """Set a slip detector's thresholds on calibration trials for a false-alarm budget.
@@ -265,8 +268,9 @@ def calibrate_slip_detector(
         onset, then those detected at all, then the threshold itself (the largest of equals).
     early_tolerance : int, default 2
         As in `score_slip_detection`.
-    gross_thresholds, piezo_thresholds : array_like, optional
-        Candidates; default 3-20 in steps of 0.5 and 4-60 in steps of 1.
+    gross_thresholds, piezo_thresholds, backup_thresholds : array_like, optional
+        Candidates; default 3-20 in steps of 0.5, 4-60 in steps of 1, and 3-20 in steps
+        of 0.5 (the backup left out, None, is always a candidate too).
     **settings
         Other `SlipDetector` settings (fixed); `piezo_time_constant` defaults to that of
         `slip_sensors`' PVDF array.
@@ -279,7 +283,8 @@ def calibrate_slip_detector(
     -----
     The statistics of each trial are computed once; the thresholds only decide on them
     (`SlipDetector.decide`). `gross_threshold` is set on the static channel alone (it
-    decides only without PVDF frames), then `piezo_threshold` with the PVDF frames.
+    decides without PVDF frames), then `piezo_threshold` with the PVDF frames and no
+    backup, then `backup_threshold` with both.
     Candidates over the budget are kept only if none is within it (then the one with the
     fewest false alarms wins).
     """
@@ -288,6 +293,7 @@ def calibrate_slip_detector(
         raise ValueError("`sequences` must hold at least one trial")
     gross_grid = np.arange(3.0, 20.01, 0.5) if gross_thresholds is None else gross_thresholds
     piezo_grid = np.arange(4.0, 60.01, 1.0) if piezo_thresholds is None else piezo_thresholds
+    backup_grid = np.arange(3.0, 20.01, 0.5) if backup_thresholds is None else backup_thresholds
     settings = {**_default_settings(), **settings}
     fused = [_detect(SlipDetector(**settings), s) for s in sequences]
     static = [replace(f, piezo_statistic=np.full_like(f.piezo_statistic, np.nan)) for f in fused]
@@ -295,7 +301,9 @@ def calibrate_slip_detector(
     def best(name: str, grid: Any, statistics: list[SlipDetection], fixed: dict) -> tuple:
         ranked = []
         for value in np.asarray(grid, dtype=float):
-            detector = SlipDetector(**{**settings, **fixed, name: float(value)})
+            # an infinite threshold is no threshold (the backup left out)
+            threshold = None if np.isinf(value) else float(value)
+            detector = SlipDetector(**{**settings, **fixed, name: threshold})
             result = _tally(sequences, [detector.decide(f) for f in statistics], early_tolerance)
             quick = int(np.sum(result.latencies <= latency))
             over = max(result.false_alarm_rate - budget, 0.0)
@@ -303,12 +311,17 @@ def calibrate_slip_detector(
         return max(ranked, key=lambda item: item[0])
 
     gross = best("gross_threshold", gross_grid, static, {})
-    chosen = {"gross_threshold": gross[1].gross_threshold}
+    chosen = {"gross_threshold": gross[1].gross_threshold, "backup_threshold": None}
     piezo = best("piezo_threshold", piezo_grid, fused, chosen)
+    chosen["piezo_threshold"] = piezo[1].piezo_threshold
+    # the backup left out (inf) wins a tie: it is the largest candidate
+    candidates = np.append(np.asarray(backup_grid, dtype=float), np.inf)
+    backup = best("backup_threshold", candidates, fused, chosen)
+    detector = backup[1]
     return SlipCalibration(
-        detector=piezo[1],
-        evaluation=piezo[2],
-        static_evaluation=_tally(sequences, [piezo[1].decide(f) for f in static], early_tolerance),
+        detector=detector,
+        evaluation=backup[2],
+        static_evaluation=_tally(sequences, [detector.decide(f) for f in static], early_tolerance),
         false_alarm_budget=budget,
         latency=int(latency),
     )
