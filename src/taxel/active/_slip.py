@@ -338,7 +338,7 @@ class SlipDetector:
         if moved.size:
             found.append(("incipient", int(moved[0]) + self.warm_up, "displacement"))
         # with PVDF frames the static run-ahead decides only past the backup threshold: at
-        # its own it adds premature alarms (the Cattaneo-Mindlin shift accelerates as c -> 0)
+        # its own threshold it adds premature alarms (the Cattaneo-Mindlin shift speeds up)
         channels = [("speed", speed_statistic, self.gross_threshold)]
         if not np.all(np.isnan(piezo_statistic)):
             channels = [("piezo", piezo_statistic, self.piezo_threshold)]
