@@ -276,6 +276,18 @@ def test_noise_only_image_has_no_contact():
     assert not extract(noisy, PITCH).contact.present
 
 
+def test_known_noise_tells_a_fine_texture_from_noise():
+    # a 16 x 16 array covered by a texture as fine as its taxels: from the image alone, the
+    # texture is the noise; told the sensor's noise (4 counts), it is a contact
+    rng = np.random.default_rng(3)
+    texture = 1000 + 300 * rng.random((16, 16)) + rng.normal(0, 4, (16, 16))
+    assert not extract(texture, 2e-3).contact.present
+    pressed = extract(texture, 2e-3, noise=4.0)
+    assert pressed.contact.present and pressed.contact_type == "surface"
+    # and noise alone stays noise when its level is told
+    assert not extract(1000 + rng.normal(0, 4, (16, 16)), 2e-3, noise=4.0).contact.present
+
+
 def test_saturated_image():
     saturated = np.full((32, 32), 255, np.uint8)
     assert not extract(saturated, 1e-3).contact.present  # no contrast, no known baseline
@@ -339,6 +351,8 @@ def test_bad_options():
         extract(image, 1e-3, point_size=0)
     with pytest.raises(ValueError, match="`depth`"):
         extract(image, 1e-3, depth=np.zeros((2, 2)))
+    with pytest.raises(ValueError, match="`noise` must be > 0, got -1"):
+        extract(image, 1e-3, noise=-1.0)
 
 
 def test_defects_narrower_than_the_cover_blur_are_removed():

@@ -213,6 +213,7 @@ def extract(
     point_size: float = 2.5e-3,
     texture_sigma: float = 2.0,
     defects: bool | None = None,
+    noise: float | None = None,
 ) -> TactileFeatures:
     """Every passive feature of one tactile image, located on the sensor and in the base frame.
 
@@ -243,6 +244,10 @@ def extract(
         Remove bright sensor defects narrower than 3 taxels (scratches on an FTIR sensor's
         glass, hot pixels) first; by default when the sensor's cover is 3 or more taxels
         deep (see `prepare`).
+    noise : float, optional
+        Noise standard deviation of one taxel [image units], when the sensor's is known;
+        estimated from the image if omitted (a texture as fine as the taxels over the whole
+        array then reads as noise, see `prepare`).
 
     Returns
     -------
@@ -276,6 +281,7 @@ def extract(
         smoothing=smoothing,
         baseline=baseline,
         defects=defects,
+        noise=noise,
     )
     point_size = check_positive("point_size", point_size)
     texture_sigma = check_range("texture_sigma", texture_sigma, 0.0, 20.0, low_inclusive=False)

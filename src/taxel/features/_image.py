@@ -27,7 +27,7 @@ from typing import Any, cast
 import cv2
 import numpy as np
 
-from taxel._validation import check_finite, check_range
+from taxel._validation import check_finite, check_positive, check_range
 from taxel.features._sensor import cover_blur, cover_depth, hexagonal_resampled, pitch_pair
 
 __all__ = ["Prepared", "prepare"]
@@ -257,6 +257,7 @@ def prepare(
     smoothing: float = 1.0,
     baseline: float | None = None,
     defects: bool | None = None,
+    noise: float | None = None,
 ) -> Prepared:
     """Validate, clean, smooth and segment a tactile image (the first step of every feature).
 
@@ -280,6 +281,10 @@ def prepare(
         Remove bright defects narrower than 3 taxels (glass scratches, hot pixels) with a
         3 x 3 grey-level opening. By default only when `sensor_or_pitch` describes a cover
         whose sensing plane lies 3 or more taxels deep (see the module notes).
+    noise : float, optional
+        The noise standard deviation of one taxel [image units], when the sensor's is
+        known; by default estimated from the image, which cannot tell a texture as fine
+        as the taxels from noise when it covers the whole array.
 
     Returns
     -------
@@ -297,7 +302,7 @@ def prepare(
     smoothing = check_range("smoothing", smoothing, 0.0, 20.0)
     step = 2 if values.shape[0] > 64 and values.shape[1] > 64 else 1
     residual = laplacian_residual(values, step)
-    raw_noise = _noise_sigma(residual)
+    raw_noise = _noise_sigma(residual) if noise is None else check_positive("noise", noise)
     cleaned = removes_defects(sensor_or_pitch, defects)
     if cleaned:
         values = cv2.morphologyEx(values, cv2.MORPH_OPEN, _DEFECT_KERNEL)
