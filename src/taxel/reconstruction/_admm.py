@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from taxel._validation import check_positive
-from taxel.reconstruction._frames import as_frames, parse_regularization
+from taxel.reconstruction._frames import one_frame, parse_regularization
 from taxel.reconstruction._result import ReconstructionResult
 from taxel.reconstruction._spectral import DenseSpectrum
 from taxel.reconstruction._tikhonov import TikhonovSolver
@@ -295,10 +295,7 @@ class ADMMSolver:
         Parameters as `TikhonovSolver.solve`; for "tv" a numeric `regularization` is mu
         [Pa], the weight of the total variation relative to |A|^2.
         """
-        frames, batch = as_frames(frame, self.spec)
-        if batch != ():
-            raise ValueError(f"`frame` must be one frame {self.spec.shape} for {self.method}")
-        frame = frames[0]
+        frame = one_frame(frame, self.spec, self.method)
         rule, value = parse_regularization(regularization)
         linear = self.linear.solve(
             frame, regularization=regularization, noise_level=noise_level, tau=tau

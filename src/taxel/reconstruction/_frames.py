@@ -41,6 +41,14 @@ def as_frames(frames: Any, spec: ForwardModelSpec) -> tuple[np.ndarray, tuple[in
     return array, batch
 
 
+def one_frame(frame: Any, spec: ForwardModelSpec, method: str) -> np.ndarray:
+    """A single frame as a float (rows, cols) array (see `as_frames`); a batch is an error."""
+    frames, batch = as_frames(frame, spec)
+    if batch != ():
+        raise ValueError(f"`frame` must be one frame {spec.shape} for {method}")
+    return frames[0]
+
+
 def restore_batch(values: np.ndarray, batch: tuple[int, ...]) -> Any:
     """Per-frame values (B, ...) back to the caller's batch shape; scalars for one frame."""
     if batch == ():

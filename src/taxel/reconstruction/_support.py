@@ -44,7 +44,7 @@ from scipy import ndimage
 
 from taxel._validation import check_positive
 from taxel.reconstruction._admm import ADMMSolver
-from taxel.reconstruction._frames import as_frames, parse_regularization
+from taxel.reconstruction._frames import one_frame, parse_regularization
 from taxel.reconstruction._model import reflect_normal_block, reflect_normal_kernel
 from taxel.reconstruction._restricted import component_scores, restricted_fit
 from taxel.reconstruction._result import ReconstructionResult
@@ -180,10 +180,7 @@ class SupportSolver:
         `regularization` is lambda2 of the second stage (relative units, identity
         penalty), and `support` the cells allowed to carry load.
         """
-        frames, batch = as_frames(frame, self.spec)
-        if batch != ():
-            raise ValueError(f"`frame` must be one frame {self.spec.shape} for support")
-        frame = frames[0]
+        frame = one_frame(frame, self.spec, "support")
         rule, _ = parse_regularization(regularization)
         first = self.linear.solve(
             frame, regularization=regularization, noise_level=noise_level, tau=tau
