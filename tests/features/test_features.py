@@ -214,6 +214,37 @@ def test_texture_orders_with_bumpiness_and_is_size_free():
     assert sizes[1] == pytest.approx(sizes[0], rel=0.02)
 
 
+@pytest.mark.parametrize("shape", [(128, 128), (16, 16), (15, 17), (16, 13), (1, 8), (9, 1)])
+def test_packed_spectrum_equals_the_full_one(shape):
+    # the octave bands, mean frequency and strongest bin read from OpenCV's packed half
+    # spectrum equal those of NumPy's full complex spectrum of the same windowed ripple
+    from taxel.features._spectrum import OCTAVES, ripple_spectrum
+
+    rng = np.random.default_rng(sum(shape))
+    rows, cols = shape
+    y, x = np.mgrid[:rows, :cols]
+    image = (np.cos(2 * np.pi * x / 3.3) + 0.3 * rng.standard_normal(shape)).astype(np.float32)
+    pitch = (1e-3, 1.5e-3)
+    window = np.outer(np.hanning(rows), np.hanning(cols))
+    power = np.abs(np.fft.fft2((image - image.mean()) * window)) ** 2
+    power[0, 0] = 0.0
+    frequency = np.hypot(
+        np.fft.fftfreq(rows, pitch[0])[:, None], np.fft.fftfreq(cols, pitch[1])[None, :]
+    )
+    nyquist = 0.5 / math.sqrt(pitch[0] * pitch[1])
+    bands = [
+        power[(frequency > nyquist / 2 ** (k + 1)) & (frequency <= nyquist / 2**k)].sum()
+        for k in range(OCTAVES)
+    ]
+    bands[0] += power[frequency > nyquist].sum()  # the corners beyond the Nyquist circle
+    measured = ripple_spectrum(image, pitch)
+    assert measured.band_energy == pytest.approx(np.array(bands) / power.sum(), abs=1e-6)
+    centroid = (power * frequency).sum() / power.sum()
+    assert measured.centroid_per_m == pytest.approx(centroid, rel=1e-5)
+    assert measured.strongest_per_m == pytest.approx(frequency.flat[power.argmax()], rel=1e-6)
+    assert ripple_spectrum(np.ones(shape, np.float32), pitch) is None
+
+
 def test_planarity_and_normal():
     y, x = np.mgrid[:128, :128] - 63.5
     face = (np.hypot(x, y) < 30).astype(float)  # an evenly pressed flat face

@@ -11,8 +11,8 @@ import cv2
 import numpy as np
 
 from taxel._validation import check_range
-from taxel.features._fitting import dot
 from taxel.features._image import Prepared, noise_from_residual, prepare
+from taxel.features._spectrum import OCTAVES, ripple_spectrum
 from taxel.features._window import WHOLE_IMAGE, contact_area, contact_box, contact_window
 
 __all__ = ["Texture", "high_points", "texture_core", "texture_measures"]
@@ -32,9 +32,6 @@ _MAXIMUM_SIGMAS = 4.0
 _ISOTROPY = 0.25
 _RING_RADIUS = 2.0  # [sigma]
 _RING_POINTS = 32
-# Octave bands of spatial frequency, from the Nyquist limit down: [f/2, f], [f/4, f/2], ...
-_OCTAVES = 4
-_SPECTRUM_CACHE: dict[tuple, tuple[Any, ...]] = {}
 _SQUARES: dict[int, np.ndarray] = {}
 _AROUND = np.array([[1, 1, 1], [1, 0, 1], [1, 1, 1]], np.uint8)  # the 8 neighbours
 
@@ -73,40 +70,6 @@ class Texture:
     spectral_centroid_per_m: float | None
     band_energy: tuple[float, ...]
     roughness: float
-
-
-def _spectrum_layout(shape: tuple[int, int], pitch: tuple[float, float]) -> tuple:
-    """Window, frequencies and octave bands of a spectrum (cached per shape and pitch).
-
-    Returns the Hann window, the frequency [cycles/m] per bin, the bins sorted by octave
-    band, the bands' starts in that order, and which bands hold no bin (None when all hold
-    some). Bins are numbered as the flattened (rows, cols) spectrum; octave 0 is the
-    finest, and the mean and the frequencies below the last octave come last (unused).
-    """
-    key = (shape, pitch)
-    layout = _SPECTRUM_CACHE.get(key)
-    if layout is None:
-        window = np.outer(np.hanning(shape[0]), np.hanning(shape[1])).astype(np.float32)
-        fy = np.fft.fftfreq(shape[0], pitch[0])[:, None]
-        fx = np.fft.fftfreq(shape[1], pitch[1])[None, :]
-        frequency = np.sqrt(fy**2 + fx**2).ravel()
-        nyquist = 0.5 / math.sqrt(pitch[0] * pitch[1])
-        band = np.full(frequency.shape, _OCTAVES, np.intp)
-        for octave in range(_OCTAVES - 1, -1, -1):
-            band[frequency > nyquist / 2 ** (octave + 1)] = octave
-        band[0] = _OCTAVES  # the mean
-        order = np.argsort(band, kind="stable")
-        starts = np.searchsorted(band[order], np.arange(_OCTAVES + 1))
-        empty = starts[1:] == starts[:-1]  # bands without bins (tiny images)
-        layout = (
-            window,
-            frequency.astype(np.float32),
-            order,
-            starts,
-            empty if empty.any() else None,
-        )
-        _SPECTRUM_CACHE[key] = layout
-    return layout
 
 
 @lru_cache(maxsize=64)
@@ -250,7 +213,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
 def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Texture:
     """Texture measures of a prepared image (internal core of `texture_measures`)."""
     if not prepared.present:
-        return Texture(0, 0.0, 0.0, None, None, (0.0,) * _OCTAVES, 0.0)
+        return Texture(0, 0.0, 0.0, None, None, (0.0,) * OCTAVES, 0.0)
     n_maxima, mean_height = high_points(prepared, sigma=sigma)
     area = float(contact_area(prepared)) * prepared.taxel_area
     density = n_maxima / area
@@ -260,27 +223,12 @@ def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Textur
     roughness = float(deviation[0, 0]) / above if above > 0 else 0.0
     # ripple: the whole image minus its mean, Hann-windowed (the seed measures texture over
     # the entire image)
-    image = prepared.image
-    window, frequency, order, starts, empty = _spectrum_layout(image.shape, prepared.pitch)
-    ripple = image - np.float32(cv2.mean(image)[0])
-    np.multiply(ripple, window, out=ripple)
-    spectrum = cv2.dft(ripple, flags=cv2.DFT_COMPLEX_OUTPUT)
-    np.multiply(spectrum, spectrum, out=spectrum)  # squares of the real and imaginary parts
-    power = (spectrum[..., 0] + spectrum[..., 1]).ravel()
-    power[0] = 0.0
-    total = float(power.sum(dtype=np.float64))
-    if total <= 0:
-        return Texture(n_maxima, mean_height, density, None, None, (0.0,) * _OCTAVES, roughness)
-    sums = np.add.reduceat(np.take(power, order).astype(np.float64), starts)[:_OCTAVES]
-    if empty is not None:
-        sums[empty] = 0.0  # an empty band holds nothing
-    bands = sums / total
-    strongest = float(frequency[cv2.minMaxLoc(power.reshape(1, -1))[3][0]])  # fast argmax
-    centroid = dot(power, frequency) / total
+    spectrum = ripple_spectrum(prepared.image, prepared.pitch)
+    if spectrum is None:
+        return Texture(n_maxima, mean_height, density, None, None, (0.0,) * OCTAVES, roughness)
+    strongest, centroid, bands = spectrum
     wavelength = 1.0 / strongest if strongest > 0 else math.inf
-    return Texture(
-        n_maxima, mean_height, density, wavelength, centroid, tuple(bands.tolist()), roughness
-    )
+    return Texture(n_maxima, mean_height, density, wavelength, centroid, bands, roughness)
 
 
 def texture_measures(

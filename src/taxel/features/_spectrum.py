@@ -1,0 +1,133 @@
+"""Spatial-frequency spectrum of a tactile image's ripple, by octave bands (internal).
+
+The image is real, so its spectrum is conjugate-symmetric: OpenCV's real DFT gives each
+pair of conjugate bins once, packed as "CCS" (the real and imaginary parts of a bin in
+neighbouring entries), in two thirds of the time of the full complex spectrum. The band
+sums, the power-weighted mean frequency and the strongest bin are read from that packed
+half directly, with indices worked out once per image shape.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+from typing import NamedTuple
+
+import cv2
+import numpy as np
+
+from taxel.features._fitting import dot
+
+__all__ = ["OCTAVES", "RippleSpectrum", "ripple_spectrum"]
+
+# Octave bands of spatial frequency, from the Nyquist limit down: [f/2, f], [f/4, f/2], ...
+OCTAVES = 4
+
+
+class RippleSpectrum(NamedTuple):
+    """Strongest frequency, power-weighted mean frequency and octave band fractions."""
+
+    strongest_per_m: float
+    centroid_per_m: float
+    band_energy: tuple[float, ...]
+
+
+class _Layout(NamedTuple):
+    window: np.ndarray  # Hann window, float32, the image's shape
+    first: np.ndarray  # per bin: flat index of its real part in the packed spectrum
+    second: np.ndarray  # per bin: of its imaginary part (0, the mean, zeroed, if it has none)
+    real_bins: np.ndarray  # bins that are their own conjugate (no imaginary part)
+    frequency: np.ndarray  # per bin [cycles/m], float32
+    starts: np.ndarray  # where each octave band begins in the bins' order
+    empty: np.ndarray | None  # bands holding no bin (tiny images), or None
+
+
+def _packed_bins(rows: int, cols: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Frequency indices (ky, kx) and part (0 real, 1 imaginary) of each CCS entry.
+
+    OpenCV packs the spectrum of a real image so: each row's transform is stored as
+    Re0, Re1, Im1, Re2, Im2, ... (ending Re(N/2) when N is even); the columns holding the
+    purely real Re0 and Re(N/2) are transformed again the same way down the rows, and
+    every (Re k, Im k) pair of columns is transformed as one complex column.
+    """
+    r = np.arange(rows)[:, None] + np.zeros((1, cols), np.intp)
+    c = np.zeros((rows, 1), np.intp) + np.arange(cols)[None, :]
+    real_column = (c == 0) | ((cols % 2 == 0) & (c == cols - 1))
+    alone = (r == 0) | ((rows % 2 == 0) & (r == rows - 1))  # Re0 and Re(M/2) down a column
+    ky = np.where(real_column, np.where(alone, np.where(r == 0, 0, rows // 2), (r + 1) // 2), r)
+    kx = np.where(real_column, np.where(c == 0, 0, cols // 2), (c + 1) // 2)
+    part = np.where(real_column, np.where(alone, 0, (r + 1) % 2), (c + 1) % 2)
+    return ky.ravel(), kx.ravel(), part.ravel()
+
+
+@lru_cache(maxsize=32)
+def _layout(shape: tuple[int, int], pitch: tuple[float, float]) -> _Layout:
+    """Window, bins and octave bands of an image shape and pitch (cached)."""
+    rows, cols = shape
+    ky, kx, part = _packed_bins(rows, cols)
+    key = ky * cols + kx
+    bins = np.unique(key)
+    first = np.empty(bins.size, np.intp)
+    second = np.zeros(bins.size, np.intp)
+    position = np.searchsorted(bins, key)
+    entries = np.arange(key.size)
+    first[position[part == 0]] = entries[part == 0]
+    second[position[part == 1]] = entries[part == 1]
+    bin_ky, bin_kx = bins // cols, bins % cols
+    fy = np.fft.fftfreq(rows, pitch[0])[bin_ky]
+    fx = np.fft.fftfreq(cols, pitch[1])[bin_kx]
+    frequency = np.sqrt(fy**2 + fx**2)
+    nyquist = 0.5 / math.sqrt(pitch[0] * pitch[1])
+    band = np.full(bins.size, OCTAVES, np.intp)
+    for octave in range(OCTAVES - 1, -1, -1):
+        band[frequency > nyquist / 2 ** (octave + 1)] = octave
+    band[bins == 0] = OCTAVES  # the mean
+    # bins in band order; within a band, in the raster order of the full spectrum
+    raster = np.minimum(bins, (-bin_ky % rows) * cols + (-bin_kx % cols))
+    order = np.lexsort((raster, band))
+    starts = np.searchsorted(band[order], np.arange(OCTAVES + 1))
+    empty = starts[1:] == starts[:-1]
+    second = second[order]
+    window = np.outer(np.hanning(rows), np.hanning(cols)).astype(np.float32)
+    layout = _Layout(
+        window,
+        first[order],
+        second,
+        np.flatnonzero((second == 0) & (bins[order] != 0)),
+        frequency[order].astype(np.float32),
+        starts,
+        empty if empty.any() else None,
+    )
+    for array in layout:
+        if isinstance(array, np.ndarray):
+            array.flags.writeable = False
+    return layout
+
+
+def ripple_spectrum(image: np.ndarray, pitch: tuple[float, float]) -> RippleSpectrum | None:
+    """Spectrum measures of an image's ripple: mean removed, Hann-windowed (internal).
+
+    Returns None for an image without ripple. Power is summed over the whole spectrum:
+    each packed bin stands for itself and its conjugate, except the few bins that are
+    their own conjugate (the mean and the Nyquist rows and columns' corners), which count
+    half.
+    """
+    layout = _layout(image.shape, pitch)
+    ripple = image - np.float32(cv2.mean(image)[0])
+    np.multiply(ripple, layout.window, out=ripple)
+    packed = cv2.dft(ripple)
+    np.multiply(packed, packed, out=packed)
+    squares = packed.ravel()
+    squares[0] = 0.0  # the mean; also the missing imaginary part of the real bins
+    power = np.take(squares, layout.first)
+    power += np.take(squares, layout.second)
+    strongest = float(layout.frequency[cv2.minMaxLoc(power.reshape(1, -1))[3][0]])
+    power[layout.real_bins] *= 0.5
+    sums = np.add.reduceat(power.astype(np.float64), layout.starts)
+    total = float(sums.sum())
+    if total <= 0:
+        return None
+    if layout.empty is not None:
+        sums[:OCTAVES][layout.empty] = 0.0  # an empty band holds nothing
+    bands = sums[:OCTAVES] / total
+    return RippleSpectrum(strongest, dot(power, layout.frequency) / total, tuple(bands.tolist()))
