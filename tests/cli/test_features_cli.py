@@ -59,6 +59,19 @@ def test_sensor_preset_gives_the_pitch(tmp_path, capsys):
     assert y == pytest.approx(0.0, abs=0.2e-3)
 
 
+def test_known_noise_finds_a_texture_that_covers_the_array(tmp_path, capsys):
+    # a 16 x 16 array covered by a texture as fine as its taxels reads as noise, unless the
+    # sensor's noise (4 counts) is given
+    rng = np.random.default_rng(3)
+    path = tmp_path / "texture.npy"
+    np.save(path, 1000 + 300 * rng.random((16, 16)) + rng.normal(0, 4, (16, 16)))
+    args = ["features", str(path), "--pitch", "2e-3", "--json"]
+    assert main(args) == 0
+    assert json.loads(capsys.readouterr().out)["contact_type"] == "none"
+    assert main([*args, "--noise", "4"]) == 0
+    assert json.loads(capsys.readouterr().out)["contact_type"] == "surface"
+
+
 @pytest.mark.parametrize(
     ("setup", "extra", "match"),
     [
@@ -70,6 +83,8 @@ def test_sensor_preset_gives_the_pitch(tmp_path, capsys):
         ("frame", ["--pitch", "-1"], "`sensor_or_pitch` must be > 0"),
         ("nan", ["--pitch", "1e-3"], "finite"),
         ("badpose", ["--pitch", "1e-3", "--pose", "POSE"], "not valid JSON"),
+        ("frame", ["--pitch", "1e-3", "--noise", "-2"], "--noise must be a positive number"),
+        ("frame", ["--pitch", "1e-3", "--noise", "nan"], "got nan"),
     ],
 )
 def test_errors_are_one_line(tmp_path, capsys, washer, setup, extra, match):

@@ -117,11 +117,20 @@ def _pitch(arguments: argparse.Namespace) -> Any:
     return arguments.pitch
 
 
+def _noise(arguments: argparse.Namespace) -> float | None:
+    """The taxel noise from --noise [image units]: a positive, finite number, or None."""
+    noise = arguments.noise
+    if noise is not None and not (math.isfinite(noise) and noise > 0):
+        raise ValueError(f"--noise must be a positive number of image units, got {noise:g}")
+    return noise
+
+
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.features import extract
     from taxel.io import read_frame
 
     pitch = _pitch(arguments)
+    noise = _noise(arguments)
     if arguments.figure:
         from taxel.io import check_new_file
 
@@ -134,7 +143,7 @@ def _run(arguments: argparse.Namespace) -> int:
         )
     image = read_frame(arguments.file)
     pose = None if arguments.pose is None else _load_pose(Path(arguments.pose))
-    features = extract(image, pitch, pose=pose, calibrated=arguments.calibrated)
+    features = extract(image, pitch, pose=pose, calibrated=arguments.calibrated, noise=noise)
     data = features.to_dict()
     if arguments.json:
         sys.stdout.write(json.dumps(data, indent=2) + "\n")
@@ -166,6 +175,14 @@ def register(commands: Any) -> None:
     )
     parser.add_argument("--pose", metavar="POSE.json", help="sensor pose T_BS in the base frame")
     parser.add_argument("--calibrated", action="store_true", help="the image holds pressure [Pa]")
+    parser.add_argument(
+        "--noise",
+        type=float,
+        metavar="UNITS",
+        help="the noise standard deviation of one taxel, in the image's units, when the "
+        "sensor's is known (by default estimated from the image, which takes a texture as "
+        "fine as the taxels over the whole array for noise)",
+    )
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
     parser.add_argument("--figure", metavar="PNG", help="also draw the features to this file")
     parser.add_argument("--overwrite", action="store_true", help="replace an existing --figure")
