@@ -83,6 +83,21 @@ def test_fit_refuses_to_overwrite_unless_forced(folders, tmp_path, capsys):
     assert TextureClassifier.load(model_path).n_neighbors == 1
 
 
+def test_fit_never_writes_over_a_recording_and_reads_a_folder_once(folders, tmp_path, capsys):
+    train, _ = folders
+    recording = train / "Ribbed_F150_V20mmps_0.csv"
+    kept = recording.read_text()
+    assert main(["texture", "fit", str(train), "--out", str(recording), "--overwrite"]) == 2
+    assert "--out must name a .json file" in _one_line_error(capsys)
+    assert recording.read_text() == kept
+    folder = tmp_path / "model.json"
+    folder.mkdir()
+    assert main(["texture", "fit", str(train), "--out", str(folder), "--overwrite"]) == 2
+    assert "is a folder; name a file" in _one_line_error(capsys)
+    assert main(["texture", "fit", str(train), str(train), "--out", str(tmp_path / "m.json")]) == 0
+    assert "fitted 6 recordings" in capsys.readouterr().out
+
+
 def _one_line_error(capsys):
     captured = capsys.readouterr()
     assert captured.err.count("\n") == 1 and "Traceback" not in captured.err

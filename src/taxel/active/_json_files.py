@@ -28,14 +28,17 @@ def read_json(
     Raises
     ------
     ValueError
-        Not JSON, another format, or a missing key: naming the file and what is wrong.
+        A folder, not JSON, another format, or a missing key: naming the file and what is
+        wrong.
     """
     source = Path(path)
+    if source.is_dir():
+        raise ValueError(f"`path` {str(source)!r} is a folder, not {what}")
     if not source.is_file():
         raise FileNotFoundError(f"{str(source)!r} does not exist")
     try:
         data = json.loads(source.read_text())
-    except json.JSONDecodeError as error:
+    except (json.JSONDecodeError, UnicodeDecodeError) as error:
         raise ValueError(f"`path` {str(source)!r} is not a JSON file: {error}") from None
     if not isinstance(data, dict) or data.get("format") != file_format:
         raise ValueError(f"`path` {str(source)!r} is not {what}")

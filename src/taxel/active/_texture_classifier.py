@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 
 from taxel._validation import as_finite_array
+from taxel.io import write_text
 
 # as_features and vote are shared with _texture_validation
 __all__ = ["TextureClassifier", "fit_texture_classifier"]
@@ -192,15 +193,14 @@ class TextureClassifier:
 
     def save(self, path: str | os.PathLike[str], *, overwrite: bool = False) -> None:
         """Write the classifier as JSON; refuse to replace a file unless `overwrite`."""
-        path = Path(path)
-        if path.exists() and not overwrite:
-            raise FileExistsError(f"{path} exists; not overwriting it")
-        path.write_text(json.dumps(self.to_dict(), allow_nan=False) + "\n")
+        write_text(path, json.dumps(self.to_dict(), allow_nan=False) + "\n", overwrite=overwrite)
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> TextureClassifier:
         """Read a classifier written by `save`."""
         path = Path(path)
+        if path.is_dir():
+            raise ValueError(f"{path} is a folder, not a texture classifier file")
         if not path.is_file():
             raise FileNotFoundError(f"no such file: {path}")
         try:

@@ -29,7 +29,12 @@ from taxel.active import (
     texture_signature,
 )
 from taxel.cli._arguments import integer_in, positive, real_in
-from taxel.io import list_fabricslide_files, parse_fabricslide_name, read_fabricslide
+from taxel.io import (
+    check_new_file,
+    list_fabricslide_files,
+    parse_fabricslide_name,
+    read_fabricslide,
+)
 
 __all__ = ["register"]
 
@@ -43,19 +48,30 @@ _SIGNATURE_SETTINGS = (
 
 
 def _features(path: Path, settings: Mapping[str, Any]) -> np.ndarray:
+    """Texture features of one recording; an error names the recording."""
     recording = read_fabricslide(path)
     options = {name: settings[name] for name in _SIGNATURE_SETTINGS if name in settings}
-    signature = texture_signature(
-        recording.readings, recording.time, recording.sliding_velocity, **options
-    )
+    try:
+        signature = texture_signature(
+            recording.readings, recording.time, recording.sliding_velocity, **options
+        )
+    except ValueError as error:
+        raise ValueError(f"{path}: {error}") from None
     return texture_features(signature, per_taxel=bool(settings.get("per_taxel", True)))
 
 
 def _fit(arguments: argparse.Namespace) -> int:
-    out = Path(arguments.out)
-    if out.exists() and not arguments.overwrite:
-        raise FileExistsError(f"{out} exists; pass --overwrite to replace it")
-    files = [path for folder in arguments.directories for path in list_fabricslide_files(folder)]
+    # a folder named twice is read once
+    files = list(
+        dict.fromkeys(
+            path.resolve()
+            for folder in arguments.directories
+            for path in list_fabricslide_files(folder)
+        )
+    )
+    out = check_new_file(
+        arguments.out, suffix=".json", overwrite=arguments.overwrite, name="--out", inputs=files
+    )
     settings = {
         "reader": "fabricslide",
         "band_edges": [float(edge) for edge in DEFAULT_BAND_EDGES],

@@ -28,7 +28,7 @@ def check_new_file(
     Raises
     ------
     ValueError
-        Wrong suffix, a missing folder, or the path of an input file.
+        Wrong suffix, a missing folder, a folder's path, or the path of an input file.
     FileExistsError
         The file exists and `overwrite` is False.
 
@@ -43,8 +43,10 @@ def check_new_file(
     label = name if name.startswith("--") else f"`{name}`"  # a flag, or a parameter
     if suffix is not None and target.suffix.lower() != suffix:
         raise ValueError(f"{label} must name a {suffix} file, got {str(target)!r}")
-    if not target.parent.exists():
+    if not target.parent.is_dir():
         raise ValueError(f"{label} is in a folder that does not exist: {str(target.parent)!r}")
+    if target.is_dir():
+        raise ValueError(f"{label} {str(target)!r} is a folder; name a file")
     for source in inputs:
         if Path(source).exists() and target.exists() and target.samefile(source):
             raise ValueError(f"{label} {str(target)!r} is an input file; choose another")
