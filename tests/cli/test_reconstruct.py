@@ -187,3 +187,63 @@ def test_raw_frames_need_a_calibration_and_nothing_is_overwritten(tmp_path, caps
     assert np.array_equal(np.load(raw), before)
     assert main(["calibrate", "--sensor", "resistive16", "--out", str(calibration)]) == 2
     assert "exists" in capsys.readouterr().err
+
+
+def _frame_files(folder):
+    """Files that are no FRAME: empty, an .npz archive, complex and text values, a folder."""
+    empty = folder / "empty.npy"
+    empty.write_bytes(b"")
+    archive = folder / "archive.npy"
+    with archive.open("wb") as handle:
+        np.savez(handle, frame=np.ones((16, 16)))
+    complex_values = folder / "complex.npy"
+    np.save(complex_values, np.ones((16, 16), complex))
+    text = folder / "text.npy"
+    np.save(text, np.full((16, 16), "a"))
+    return {
+        empty: "not a readable .npy file",
+        archive: "is an .npz archive",
+        complex_values: "holds complex128 values, not real numbers",
+        text: "holds <U1 values, not real numbers",
+        folder: "is a folder",
+    }
+
+
+def test_unreadable_frames_are_one_line_errors(tmp_path, capsys):
+    out = tmp_path / "out" / "p.npy"
+    out.parent.mkdir()
+    for path, message in _frame_files(tmp_path).items():
+        code = main(["reconstruct", str(path), "--sensor", "resistive16", "--out", str(out)])
+        error = capsys.readouterr().err
+        assert code == 2 and error.count("\n") == 1 and message in error, (path, error)
+        assert not out.exists()
+
+
+def test_unreadable_calibrations_are_one_line_errors(tmp_path, capsys):
+    from taxel.sensor import calibrate, make_sensor
+
+    frame = tmp_path / "frame.npy"
+    np.save(frame, np.full((16, 16), 100, np.int64))
+    one_array = tmp_path / "one.npy"
+    np.save(one_array, np.ones(3))
+    empty = tmp_path / "empty.npz"
+    empty.write_bytes(b"")
+    good = tmp_path / "good.npz"
+    calibrate(make_sensor("resistive16")).save(good)
+    with np.load(good) as stored:
+        arrays = dict(stored)
+    arrays["pressures"] = arrays["pressures"][::-1].copy()
+    falling = tmp_path / "falling.npz"
+    np.savez(falling, **arrays)
+    cases = {
+        one_array: "not an .npz archive",
+        empty: "not a taxel calibration file",
+        falling: "`pressures` must rise strictly",
+        tmp_path: "a folder, not a taxel calibration file",
+    }
+    out = tmp_path / "p.npy"
+    for path, message in cases.items():
+        arguments = ["reconstruct", str(frame), "--sensor", "resistive16", "--out", str(out)]
+        assert main([*arguments, "--calibration", str(path)]) == 2
+        error = capsys.readouterr().err
+        assert error.count("\n") == 1 and message in error, (path, error)

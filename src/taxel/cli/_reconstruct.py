@@ -12,6 +12,23 @@ import numpy as np
 __all__ = ["register"]
 
 
+def _load_frame(path: Path) -> np.ndarray:
+    """The readings of FRAME, a .npy file of real numbers (NaN marks dead taxels)."""
+    if not path.is_file():
+        what = "a folder" if path.is_dir() else "not an existing file"
+        raise ValueError(f"`FRAME` must be an existing .npy file; {str(path)!r} is {what}")
+    try:
+        with path.open("rb") as handle:
+            frame = np.load(handle, allow_pickle=False)
+    except (ValueError, EOFError, OSError) as error:
+        raise ValueError(f"`FRAME` {str(path)!r} is not a readable .npy file ({error})") from None
+    if not isinstance(frame, np.ndarray):
+        raise ValueError(f"`FRAME` {str(path)!r} is an .npz archive; save the frame with np.save")
+    if not (np.issubdtype(frame.dtype, np.integer) or np.issubdtype(frame.dtype, np.floating)):
+        raise ValueError(f"`FRAME` {str(path)!r} holds {frame.dtype} values, not real numbers")
+    return frame
+
+
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.reconstruction import (
         FORWARD_MODEL_PRESETS,
@@ -27,15 +44,10 @@ def _run(arguments: argparse.Namespace) -> int:
     from taxel.io import check_new_file, write_frame
 
     path = Path(arguments.frame)
-    if not path.is_file():
-        raise ValueError(f"`FRAME` must be an existing .npy file, got {str(path)!r}")
     check_new_file(
         arguments.out, suffix=".npy", overwrite=arguments.overwrite, name="--out", inputs=(path,)
     )
-    try:  # NaN is allowed: it marks dead taxels, left out of the fit
-        frame = np.load(path, allow_pickle=False)
-    except ValueError as error:
-        raise ValueError(f"`FRAME` is not a readable .npy array: {error}") from None
+    frame = _load_frame(path)
     stored = frame.dtype
     if arguments.calibration is not None:
         from taxel.sensor import Calibration

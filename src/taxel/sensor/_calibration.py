@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import zipfile
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -202,16 +203,23 @@ class Calibration:
     def load(cls, path: str | os.PathLike[str]) -> Calibration:
         """Read a calibration written by `save`; a wrong or damaged file raises ValueError."""
         path = Path(path)
+        if path.is_dir():
+            raise ValueError(f"{path}: a folder, not a taxel calibration file")
         if not path.is_file():
             raise FileNotFoundError(f"no such file: {path}")
         try:
-            with np.load(path, allow_pickle=False) as data:
-                arrays = {name: data[name] for name in data.files}
+            with path.open("rb") as handle:
+                data = np.load(handle, allow_pickle=False)
+                if not isinstance(data, np.lib.npyio.NpzFile):
+                    raise ValueError("one array, not an .npz archive")
+                with data:
+                    arrays = {name: data[name] for name in data.files}
             meta = json.loads(str(arrays.pop("meta")))
-        except (OSError, ValueError, KeyError) as error:
+        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as error:
             raise ValueError(f"{path}: not a taxel calibration file ({error})") from None
-        if meta.get("format") != _FORMAT:
-            raise ValueError(f"{path}: not a taxel calibration file (format {meta.get('format')})")
+        if not isinstance(meta, dict) or meta.get("format") != _FORMAT:
+            format_tag = meta.get("format") if isinstance(meta, dict) else None
+            raise ValueError(f"{path}: not a taxel calibration file (format {format_tag})")
         wanted = {"pressures", "readings", "unresponsive", "pinned", "noise", "felt_fraction"}
         missing = wanted - set(arrays)
         if missing:
@@ -223,6 +231,13 @@ class Calibration:
         for name in ("unresponsive", "pinned", "noise", "felt_fraction"):
             if arrays[name].shape != shape:
                 raise ValueError(f"{path}: `{name}` has shape {arrays[name].shape}, not {shape}")
+        for name in ("pressures", "readings", "noise", "felt_fraction"):
+            if not np.issubdtype(arrays[name].dtype, np.number) or not np.all(
+                np.isfinite(arrays[name])
+            ):
+                raise ValueError(f"{path}: `{name}` must hold finite numbers")
+        if pressures.size < 2 or np.any(np.diff(pressures) <= 0):
+            raise ValueError(f"{path}: `pressures` must rise strictly, got {pressures.tolist()}")
         unresponsive = arrays["unresponsive"].astype(bool)
         pinned = arrays["pinned"].astype(bool)
         return cls(
