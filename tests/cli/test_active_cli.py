@@ -32,7 +32,7 @@ def test_locate_corner(capsys):
     [
         (["active", "probe-plane", "--probes", "2"], "argument --probes: must be >= 3, got 2"),
         (["active", "probe-plane", "--sensor", "piezo8x8"], "piezo8x8"),
-        (["active", "probe-plane", "--sensor", "nothing"], "`sensor`"),
+        (["active", "probe-plane", "--sensor", "nothing"], "--sensor: must be one of vhdta128"),
         (["active"], "the following arguments are required: PROCEDURE"),
     ],
 )

@@ -47,7 +47,7 @@ def test_design_json_is_in_si_units(capsys):
 @pytest.mark.parametrize(
     ("argv", "match"),
     [
-        (["design", "vhdta256"], "`name` must be one of vhdta128"),
+        (["design", "vhdta256"], "PRESET: must be one of vhdta128"),
         (["design", "vhdta128", "--seed", "x"], "argument --seed: must be an integer"),
     ],
 )

@@ -78,13 +78,20 @@ def test_known_noise_finds_a_texture_that_covers_the_array(tmp_path, capsys):
         ("missing", ["--pitch", "1e-3"], "no such file"),
         ("text", ["--pitch", "1e-3"], "unknown frame format"),
         ("frame", [], "--pitch"),
-        ("frame", ["--sensor", "nosuch"], "nosuch"),
+        ("frame", ["--sensor", "nosuch"], "--sensor: must be one of vhdta128"),
         ("frame", ["--sensor", "vhdta128", "--pitch", "1e-3"], "not both"),
-        ("frame", ["--pitch", "-1"], "`sensor_or_pitch` must be > 0"),
+        ("frame", ["--pitch", "-1"], "argument --pitch: must be > 0, got -1"),
+        ("frame", ["--sensor", "resistive16"], "a 64 x 64 image, but resistive16 frames are 16 x"),
+        ("frame", ["--pitch", "1e-3", "--pose", "MISSING"], "--pose MISSING: No such file"),
+        ("frame", ["--pitch", "1e-3", "--pose", "BOTH"], "not both"),
+        ("frame", ["--pitch", "1e-3", "--pose", "ZERO"], "--pose ZERO: "),
+        ("archive", ["--pitch", "1e-3"], "holds 2 arrays (a, b); choose one with `key`"),
+        ("archive", ["--pitch", "1e-3", "--key", "c"], "no array named 'c'"),
+        ("complex", ["--pitch", "1e-3"], "complex128 data, not real numbers"),
         ("nan", ["--pitch", "1e-3"], "finite"),
         ("badpose", ["--pitch", "1e-3", "--pose", "POSE"], "not valid JSON"),
-        ("frame", ["--pitch", "1e-3", "--noise", "-2"], "--noise must be a positive number"),
-        ("frame", ["--pitch", "1e-3", "--noise", "nan"], "got nan"),
+        ("frame", ["--pitch", "1e-3", "--noise", "-2"], "argument --noise: must be > 0, got -2"),
+        ("frame", ["--pitch", "1e-3", "--noise", "nan"], "argument --noise: must be > 0, got nan"),
     ],
 )
 def test_errors_are_one_line(tmp_path, capsys, washer, setup, extra, match):
@@ -95,9 +102,23 @@ def test_errors_are_one_line(tmp_path, capsys, washer, setup, extra, match):
         target.write_text("1,2")
     if setup == "nan":
         np.save(frame, np.full((8, 8), np.nan))
-    pose = tmp_path / "pose.json"
-    pose.write_text("{not json")
-    extra = [str(pose) if item == "POSE" else item for item in extra]
-    assert main(["features", str(target), *extra]) == 2
+    if setup == "archive":
+        target = tmp_path / "two.npz"
+        np.savez(target, a=washer, b=washer)
+    if setup == "complex":
+        np.save(frame, washer.astype(complex))
+    poses = {name: tmp_path / f"{name.lower()}.json" for name in ("POSE", "BOTH", "ZERO")}
+    poses["POSE"].write_text("{not json")
+    rotation = {"rotvec": [0, 0, 0], "quaternion": [0, 0, 0, 1]}
+    poses["BOTH"].write_text(json.dumps({"translation": [0, 0, 0], **rotation}))
+    poses["ZERO"].write_text(json.dumps({"translation": [0, 0, 0], "quaternion": [0, 0, 0, 0]}))
+    poses["MISSING"] = tmp_path / "missing.json"
+    extra = [str(poses[item]) if item in poses else item for item in extra]
+    match = match.replace("MISSING", str(poses["MISSING"])).replace("ZERO", str(poses["ZERO"]))
+    try:
+        code = main(["features", str(target), *extra])
+    except SystemExit as stop:  # argparse's own errors
+        code = stop.code
+    assert code == 2
     err = capsys.readouterr().err
     assert match in err and len(err.strip().splitlines()) == 1

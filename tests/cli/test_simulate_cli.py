@@ -61,7 +61,7 @@ def test_the_can_rim_crosses_the_sensor_by_default(tmp_path):
 @pytest.mark.parametrize(
     ("extra", "match"),
     [
-        (["--sensor", "resistive99", "--object", "pen"], "`name` must be one of vhdta128"),
+        (["--sensor", "resistive99", "--object", "pen"], "--sensor: must be one of vhdta128"),
         (["--sensor", "resistive16", "--object", "cup"], "`name` must be one of pen"),
         (["--sensor", "resistive16", "--object", "can", "--x", "0"], "is over no cell of the"),
         (["--sensor", "capacitive4x4", "--object", "punch"], "refine the grid with --overs"),

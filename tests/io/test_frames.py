@@ -122,8 +122,11 @@ def test_npy_that_is_not_2d_or_numeric(tmp_path):
     with pytest.raises(ValueError, match=r"must be 2-D, got shape \(2, 2, 2\)"):
         read_frame(tmp_path / "cube.npy")
     np.save(tmp_path / "text.npy", np.array([["a", "b"]]))
-    with pytest.raises(ValueError, match="holds <U1 data, not numbers"):
+    with pytest.raises(ValueError, match="holds <U1 data, not real numbers"):
         read_frame(tmp_path / "text.npy")
+    np.save(tmp_path / "complex.npy", np.ones((2, 2), complex))
+    with pytest.raises(ValueError, match="holds complex128 data, not real numbers"):
+        read_frame(tmp_path / "complex.npy")
     np.save(tmp_path / "hole.npy", np.array([[1.0, np.inf]]))
     with pytest.raises(ValueError, match="1 NaN or infinite value"):
         read_frame(tmp_path / "hole.npy")

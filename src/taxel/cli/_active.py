@@ -14,7 +14,7 @@ import sys
 from collections.abc import Callable
 from typing import Any
 
-from taxel.cli._arguments import finite, integer_in, positive, real_in, seed
+from taxel.cli._arguments import finite, integer_in, positive, preset, real_in, seed
 
 __all__ = ["register"]
 
@@ -195,7 +195,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         "surface normal and planarity of a tilted box face " "from several probes at random poses",
         _probe_plane,
     )
-    plane.add_argument("--sensor", default="resistive16", help="static sensor preset")
+    plane.add_argument("--sensor", type=preset, default="resistive16", help="static sensor preset")
     plane.add_argument("--probes", type=integer_in(3), default=5, help="number of presses (>= 3)")
     plane.add_argument("--force", type=positive, default=5.0, help="press force [N]")
     plane.add_argument(
@@ -210,7 +210,9 @@ def register(commands: argparse._SubParsersAction) -> None:
     corner = _add(
         group, "locate-corner", "a box corner from probing its three faces", _locate_corner
     )
-    corner.add_argument("--sensor", default="resistive16", help="static sensor preset")
+    corner.add_argument(
+        "--sensor", type=preset, default="resistive16", help="static sensor preset"
+    )
     corner.add_argument(
         "--probes-per-face", type=integer_in(1), default=3, help="presses on each face"
     )
@@ -234,7 +236,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         required=True,
         help="radius of the simulated edge to measure [mm]",
     )
-    edge.add_argument("--sensor", default="vhdta128", help="sensor preset")
+    edge.add_argument("--sensor", type=preset, default="vhdta128", help="sensor preset")
     edge.add_argument(
         "--table",
         metavar="TABLE.json",
@@ -267,7 +269,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         metavar=("LIGHT", "FIRM"),
         help="the two forces [N] (12 39)",
     )
-    stiff.add_argument("--sensor", default="vhdta128", help="sensor preset")
+    stiff.add_argument("--sensor", type=preset, default="vhdta128", help="sensor preset")
     stiff.add_argument(
         "--calibration",
         metavar="PAD.json",
@@ -284,7 +286,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         required=True,
         help="the model to touch (washer, coin, key blank, bolt head, " "box corner, pen, can)",
     )
-    recognize.add_argument("--sensor", default="vhdta128", help="sensor preset")
+    recognize.add_argument("--sensor", type=preset, default="vhdta128", help="sensor preset")
     recognize.add_argument(
         "--library",
         metavar="LIBRARY.json",

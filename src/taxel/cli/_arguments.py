@@ -6,7 +6,7 @@ import argparse
 import math
 from collections.abc import Callable
 
-__all__ = ["finite", "integer_in", "positive", "real_in", "seed"]
+__all__ = ["finite", "integer_in", "positive", "preset", "real_in", "seed"]
 
 
 def _number(text: str) -> float:
@@ -67,3 +67,12 @@ def integer_in(low: int, high: int | None = None) -> Callable[[str], int]:
 def seed(text: str) -> int:
     """A random seed: an integer >= 0."""
     return integer_in(0)(text)
+
+
+def preset(text: str) -> str:
+    """The name of a sensor preset (`taxel.sensor.PRESET_NAMES`)."""
+    from taxel.sensor import PRESET_NAMES
+
+    if text not in PRESET_NAMES:
+        raise argparse.ArgumentTypeError(f"must be one of {', '.join(PRESET_NAMES)}; got {text!r}")
+    return text

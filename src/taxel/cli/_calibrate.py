@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from taxel.cli._arguments import seed
+from taxel.cli._arguments import preset, seed
 
 __all__ = ["register"]
 
@@ -38,7 +38,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         "sensor's noise), fit a monotonic map raw -> pressure per taxel, mask dead and stuck "
         "taxels, and save the calibration (.npz) for `taxel reconstruct --calibration`.",
     )
-    parser.add_argument("--sensor", required=True, metavar="PRESET", help="sensor preset")
+    parser.add_argument(
+        "--sensor", type=preset, required=True, metavar="PRESET", help="sensor preset"
+    )
     parser.add_argument("--out", required=True, metavar="CAL.npz", help="calibration file")
     parser.add_argument("--seed", type=seed, default=0, help="noise seed of the presses (0)")
     parser.add_argument("--overwrite", action="store_true", help="replace an existing --out")

@@ -11,7 +11,7 @@ import json
 import sys
 from typing import Any
 
-from taxel.cli._arguments import seed
+from taxel.cli._arguments import preset, seed
 
 __all__ = ["register"]
 
@@ -71,7 +71,7 @@ def register(commands: Any) -> None:
         "loading cycles) and print each of Harmon's criteria: measured value, target, "
         f"verdict. Presets: {', '.join(PRESET_NAMES)}.",
     )
-    parser.add_argument("preset", metavar="PRESET", help="sensor preset")
+    parser.add_argument("preset", type=preset, metavar="PRESET", help="sensor preset")
     parser.add_argument("--json", action="store_true", help="print JSON (SI units)")
     parser.add_argument(
         "--seed", type=seed, default=0, metavar="N", help="noise seed of the measurements (0)"

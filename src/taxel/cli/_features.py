@@ -11,10 +11,21 @@ from typing import Any
 
 import numpy as np
 
+from taxel.cli._arguments import positive, preset
+
 __all__ = ["register"]
 
 
 def _load_pose(path: Path) -> np.ndarray:
+    """The --pose file's 4x4 pose; any problem with it is a ValueError naming --pose."""
+    try:
+        return _read_pose(path)
+    except (ValueError, TypeError, KeyError, OSError) as error:
+        message = error.strerror if isinstance(error, OSError) and error.strerror else error
+        raise ValueError(f"--pose {path}: {message}") from None
+
+
+def _read_pose(path: Path) -> np.ndarray:
     """A 4x4 pose from JSON: a nested list, or {"matrix": ...}, or translation + rotation."""
     from scipy.spatial.transform import Rotation
 
@@ -23,20 +34,22 @@ def _load_pose(path: Path) -> np.ndarray:
     try:
         data = json.loads(path.read_text())
     except json.JSONDecodeError as error:
-        raise ValueError(f"{path}: not valid JSON ({error.msg})") from None
+        raise ValueError(f"not valid JSON ({error.msg})") from None
     if isinstance(data, dict) and "matrix" in data:
         data = data["matrix"]
     if isinstance(data, list):
         return as_pose(data, name="pose")
     if isinstance(data, dict) and "translation" in data:
         rotation = None
+        if "quaternion" in data and "rotvec" in data:
+            raise ValueError("give a quaternion or a rotvec, not both")
         if "quaternion" in data:
             rotation = Rotation.from_quat(data["quaternion"])  # (x, y, z, w)
         elif "rotvec" in data:
             rotation = Rotation.from_rotvec(data["rotvec"])
         return make_pose(rotation, data["translation"])
     raise ValueError(
-        f"{path}: a pose is a 4x4 list, {{'matrix': 4x4}} or "
+        "a pose is a 4x4 list, {'matrix': 4x4} or "
         "{'translation': [x, y, z], 'quaternion': [x, y, z, w] | 'rotvec': [...]}"
     )
 
@@ -117,20 +130,11 @@ def _pitch(arguments: argparse.Namespace) -> Any:
     return arguments.pitch
 
 
-def _noise(arguments: argparse.Namespace) -> float | None:
-    """The taxel noise from --noise [image units]: a positive, finite number, or None."""
-    noise = arguments.noise
-    if noise is not None and not (math.isfinite(noise) and noise > 0):
-        raise ValueError(f"--noise must be a positive number of image units, got {noise:g}")
-    return noise
-
-
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.features import extract
     from taxel.io import read_frame
 
     pitch = _pitch(arguments)
-    noise = _noise(arguments)
     if arguments.figure:
         from taxel.io import check_new_file
 
@@ -141,19 +145,28 @@ def _run(arguments: argparse.Namespace) -> int:
             name="--figure",
             inputs=(arguments.file,),
         )
-    image = read_frame(arguments.file)
+    image = read_frame(arguments.file, key=arguments.key)
+    shape = getattr(pitch, "shape", None)
+    if shape is not None and image.shape != tuple(shape):
+        raise ValueError(
+            f"{arguments.file}: a {image.shape[0]} x {image.shape[1]} image, but "
+            f"{arguments.sensor} frames are {shape[0]} x {shape[1]}; for a map on another "
+            "grid, give its pitch with --pitch"
+        )
     pose = None if arguments.pose is None else _load_pose(Path(arguments.pose))
-    features = extract(image, pitch, pose=pose, calibrated=arguments.calibrated, noise=noise)
+    features = extract(
+        image, pitch, pose=pose, calibrated=arguments.calibrated, noise=arguments.noise
+    )
+    if arguments.figure:  # first: a figure that cannot be written stops before any output
+        from taxel.viz import plot_features
+
+        figure = plot_features(image, features, pitch)
+        figure.savefig(arguments.figure, dpi=120)
     data = features.to_dict()
     if arguments.json:
         sys.stdout.write(json.dumps(data, indent=2) + "\n")
     else:
         sys.stdout.write(_table(data) + "\n")
-    if arguments.figure:
-        from taxel.viz import plot_features
-
-        figure = plot_features(image, features, pitch)
-        figure.savefig(arguments.figure, dpi=120)
     return 0
 
 
@@ -166,9 +179,13 @@ def register(commands: Any) -> None:
         "8 or 16 bit, .csv) and print them as a table or as JSON.",
     )
     parser.add_argument("file", help="the tactile image")
-    parser.add_argument("--pitch", type=float, metavar="METRES", help="taxel pitch [m]")
+    parser.add_argument(
+        "--key", metavar="NAME", help="the frame's array in an .npz holding several"
+    )
+    parser.add_argument("--pitch", type=positive, metavar="METRES", help="taxel pitch [m]")
     parser.add_argument(
         "--sensor",
+        type=preset,
         metavar="PRESET",
         help="the sensor preset the image comes from (e.g. vhdta128, resistive16): its "
         "pitch and cover",
@@ -177,7 +194,7 @@ def register(commands: Any) -> None:
     parser.add_argument("--calibrated", action="store_true", help="the image holds pressure [Pa]")
     parser.add_argument(
         "--noise",
-        type=float,
+        type=positive,
         metavar="UNITS",
         help="the noise standard deviation of one taxel, in the image's units, when the "
         "sensor's is known (by default estimated from the image, which takes a texture as "

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel.cli._arguments import finite, integer_in, positive, seed
+from taxel.cli._arguments import finite, integer_in, positive, preset, seed
 from taxel.cli._main import CommandLineError
 from taxel.io import check_new_file
 
@@ -145,7 +145,9 @@ def register(commands: Any) -> None:
         "the raw frame (.npy); optionally save the ground truth (.npz). "
         f"Sensors: {', '.join(PRESET_NAMES)}. Objects: {', '.join(INDENTER_NAMES)}.",
     )
-    parser.add_argument("--sensor", required=True, metavar="PRESET", help="sensor preset")
+    parser.add_argument(
+        "--sensor", type=preset, required=True, metavar="PRESET", help="sensor preset"
+    )
     parser.add_argument("--object", required=True, metavar="NAME", help="indenter name")
     parser.add_argument(
         "--force", required=True, type=positive, metavar="NEWTONS", help="normal force [N]"

@@ -53,9 +53,11 @@ class TactileSequence:
 def _finite(path: Path, array: np.ndarray, what: str) -> np.ndarray:
     """Return `array` as float64, or raise naming the file when it is not finite numbers."""
     if array.dtype == object or not (
-        np.issubdtype(array.dtype, np.number) or array.dtype == np.bool_
+        np.issubdtype(array.dtype, np.integer)
+        or np.issubdtype(array.dtype, np.floating)
+        or array.dtype == np.bool_
     ):
-        raise ValueError(f"{path}: {what} holds {array.dtype} data, not numbers")
+        raise ValueError(f"{path}: {what} holds {array.dtype} data, not real numbers")
     array = np.asarray(array, dtype=np.float64)
     if array.size == 0:
         raise ValueError(f"{path}: {what} is empty (shape {array.shape})")
