@@ -33,6 +33,12 @@ def test_locate_corner(capsys):
         (["active", "probe-plane", "--probes", "2"], "argument --probes: must be >= 3, got 2"),
         (["active", "probe-plane", "--sensor", "piezo8x8"], "piezo8x8"),
         (["active", "probe-plane", "--sensor", "nothing"], "--sensor: must be one of vhdta128"),
+        (["active", "probe-plane", "--sensor", "microbend16"], "reads one signal per fibre"),
+        (["active", "recognize", "--object", "pen", "--sensor", "microbend16"], "per fibre"),
+        (
+            ["active", "edge-radius", "--radius-mm", "2", "--table", "no-such-folder/t.json"],
+            "--table is in a folder that does not exist",
+        ),
         (["active"], "the following arguments are required: PROCEDURE"),
     ],
 )

@@ -20,13 +20,14 @@ import numpy as np
 from taxel._validation import check_positive
 from taxel.active._deformable_objects import make_deformation_object, top_height
 from taxel.active._finger import SimulatedFinger
+from taxel.active._imaging import imaging_sensor
 from taxel.active._pad_calibration import PadCalibration, calibrate_pad, core_area
 from taxel.active._probe import Probe, ProbeReading
 from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._scene import SceneObject
 from taxel.features import find_contact, prepare
 from taxel.frames import make_pose, transform_directions
-from taxel.sensor import TactileSensor, as_sensor
+from taxel.sensor import TactileSensor
 
 __all__ = ["Deformation", "DeformationResult", "measure_deformation"]
 
@@ -339,7 +340,7 @@ def measure_deformation(
     >>> result.deformable, round(result.heights[1] * 1e3)
     (True, 53)
     """
-    chosen = as_sensor(sensor)
+    chosen = imaging_sensor(sensor)
     light, firm = (check_positive("forces", force) for force in forces)
     touch = check_positive("touch_force", touch_force)
     if not touch < light < firm:

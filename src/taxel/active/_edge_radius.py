@@ -21,12 +21,13 @@ from taxel._validation import check_finite, check_positive
 from taxel.active._edge_section import EdgeCrossSection, edge_cross_section
 from taxel.active._edge_table import EdgeRadiusTable, fit_edge_radius_table
 from taxel.active._finger import SimulatedFinger
+from taxel.active._imaging import imaging_sensor
 from taxel.active._probe import Probe
 from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._scene import ProfileObject
 from taxel.frames import make_pose
 from taxel.mechanics import Cylinder
-from taxel.sensor import TactileSensor, as_sensor
+from taxel.sensor import TactileSensor
 
 __all__ = [
     "DEFAULT_EDGE_RADII",
@@ -281,7 +282,7 @@ def build_edge_radius_table(
     forces = [check_positive("forces", force) for force in forces]
     if int(orientations) < 2:
         raise ValueError(f"`orientations` must be >= 2, got {orientations}")
-    chosen = as_sensor(sensor)
+    chosen = imaging_sensor(sensor)
     generator = np.random.default_rng(rng) if rng is not None else None
     offsets = np.random.default_rng(rng if rng is not None else 0)
     procedure_forces = sorted(forces)
@@ -341,7 +342,7 @@ def measure_edge_radius(
     -------
     EdgeRadiusResult
     """
-    chosen = as_sensor(sensor)
+    chosen = imaging_sensor(sensor)
     if table is None:
         table = (
             _default_table(sensor, DEFAULT_FORCES)

@@ -25,11 +25,12 @@ from scipy import ndimage
 from taxel._validation import as_finite_array, check_positive
 from taxel.active._deformable_objects import make_block
 from taxel.active._finger import SimulatedFinger
+from taxel.active._imaging import imaging_sensor
 from taxel.active._json_files import read_json, write_json
 from taxel.active._scene import ProfileObject, make_ball
 from taxel.features import prepare
 from taxel.frames import make_pose
-from taxel.sensor import TactileSensor, as_sensor
+from taxel.sensor import TactileSensor
 
 __all__ = [
     "REFERENCE_CUBES",
@@ -208,7 +209,7 @@ def calibrate_pad(
     it, so the pad's compression is the travel minus 5 mm (a rigid object does not deform).
     The imprint is measured by `core_area`, as the procedure measures it.
     """
-    chosen = as_sensor(sensor)
+    chosen = imaging_sensor(sensor)
     forces = sorted(check_positive("forces", force) for force in forces)
     generator = None if rng is None else np.random.default_rng(rng)
     references = _references([check_positive("radii", radius) for radius in radii])

@@ -15,11 +15,11 @@ from scipy.spatial.transform import Rotation
 
 from taxel._validation import check_positive, check_range
 from taxel.active._finger import SimulatedFinger
+from taxel.active._imaging import imaging_sensor
 from taxel.active._probe_corner import CornerEstimate, CornerProbing, box_corner_frame
 from taxel.active._probe_plane import MIN_PROBES, PlaneEstimate, PlaneProbing
 from taxel.active._scene import Box
 from taxel.frames import make_pose, transform_directions, transform_points
-from taxel.sensor import as_sensor
 
 __all__ = ["CornerTrial", "PlaneTrial", "corner_probing_trial", "plane_probing_trial"]
 
@@ -124,7 +124,7 @@ def plane_probing_trial(
     >>> sorted(trial.to_dict())[:3]
     ['estimate', 'n_probes', 'normal_error_deg']
     """
-    probe_sensor = as_sensor(sensor)
+    probe_sensor = imaging_sensor(sensor)
     if int(n_probes) != n_probes or n_probes < MIN_PROBES:
         raise ValueError(f"`n_probes` must be an integer >= {MIN_PROBES}, got {n_probes!r}")
     face_tilt = check_range("face_tilt", face_tilt, 0.0, np.radians(45.0))
@@ -241,7 +241,7 @@ def corner_probing_trial(
     >>> bool(trial.corner_error < 0.2e-3), bool(np.degrees(trial.edge_errors).max() < 0.5)
     (True, True)
     """
-    probe_sensor = as_sensor(sensor)
+    probe_sensor = imaging_sensor(sensor)
     check_positive("guess_error", guess_error, allow_zero=True)
     check_range("guess_angle", guess_angle, 0.0, np.radians(20.0))
     rng = np.random.default_rng(seed)

@@ -12,12 +12,13 @@ import numpy as np
 
 from taxel._validation import check_choice, check_positive
 from taxel.active._finger import SimulatedFinger
+from taxel.active._imaging import imaging_sensor
 from taxel.active._model_library import ModelLibrary
 from taxel.active._object_library import MODEL_NAMES, make_model
 from taxel.active._recognition import Recognition, RecognitionResult, explore, touch_descriptor
 from taxel.active._touch_features import TOUCH_FEATURES
 from taxel.frames import make_pose
-from taxel.sensor import TactileSensor, as_sensor
+from taxel.sensor import TactileSensor
 
 __all__ = ["DESCRIPTOR_NAMES", "build_model_library", "recognize_object"]
 
@@ -87,7 +88,7 @@ def build_model_library(
         raise ValueError(f"`rotations` must be >= 1, got {rotations}")
     normal_force = check_positive("normal_force", normal_force)
     step = check_positive("step", step)
-    chosen = as_sensor(sensor)
+    chosen = imaging_sensor(sensor)
     generator = None if rng is None else np.random.default_rng(rng)
     templates, labels = [], []
     for name in dict.fromkeys(models):
@@ -153,7 +154,7 @@ def recognize_object(
     """
     check_choice("name", name, MODEL_NAMES)
     position_error = check_positive("position_error", position_error, allow_zero=True)
-    chosen = as_sensor(sensor)
+    chosen = imaging_sensor(sensor)
     if library is None:
         if isinstance(sensor, str):
             library = _default_library(sensor)

@@ -73,15 +73,26 @@ def _locate_corner(arguments: argparse.Namespace) -> int:
 
 
 def _file_or_build(
-    path: str | None, load: Callable[[str], Any], build: Callable[[str], Any], what: str
+    path: str | None,
+    load: Callable[[str], Any],
+    build: Callable[[str], Any],
+    what: str,
+    option: str,
 ) -> Any:
-    """Load `path` when it exists; otherwise build it there (never overwriting a file)."""
+    """Load `path` when it exists; otherwise build it there (never overwriting a file).
+
+    Where it cannot be written (a missing folder, another suffix) is found before the
+    long build, not after it.
+    """
     if path is None:
         return None
     from pathlib import Path
 
-    if Path(path).exists():
+    from taxel.io import check_new_file
+
+    if Path(path).exists() and not Path(path).is_dir():
         return load(path)
+    check_new_file(path, suffix=".json", name=option)
     sys.stderr.write(f"building the {what} (this takes a while); saving it to {path}\n")
     return build(path)
 
@@ -94,6 +105,7 @@ def _edge_radius(arguments: argparse.Namespace) -> int:
         EdgeRadiusTable.load,
         lambda path: build_edge_radius_table(sensor=arguments.sensor, path=path),
         "edge-radius table",
+        "--table",
     )
     result = measure_edge_radius(
         arguments.radius_mm * 1e-3,
@@ -123,7 +135,7 @@ def _stiffness(arguments: argparse.Namespace) -> int:
         return calibration
 
     calibration = _file_or_build(
-        arguments.calibration, PadCalibration.load, build, "pad calibration"
+        arguments.calibration, PadCalibration.load, build, "pad calibration", "--calibration"
     )
     custom = arguments.shape is not None
     result = measure_deformation(
@@ -157,6 +169,7 @@ def _recognize(arguments: argparse.Namespace) -> int:
         ModelLibrary.load,
         lambda path: build_model_library(sensor=arguments.sensor, path=path),
         "model library",
+        "--library",
     )
     result = recognize_object(
         arguments.object, library=library, sensor=arguments.sensor, rng=arguments.seed
@@ -199,13 +212,16 @@ def register(commands: argparse._SubParsersAction) -> None:
     plane.add_argument("--probes", type=integer_in(3), default=5, help="number of presses (>= 3)")
     plane.add_argument("--force", type=positive, default=5.0, help="press force [N]")
     plane.add_argument(
-        "--face-tilt-deg", type=positive, default=15.0, help="largest tilt of the face [deg]"
+        "--face-tilt-deg",
+        type=real_in(0.0, 45.0),
+        default=15.0,
+        help="largest tilt of the face [deg], 0-45",
     )
     plane.add_argument(
         "--pose-tilt-deg",
-        type=positive,
+        type=real_in(0.0, 30.0),
         default=10.0,
-        help="largest tilt of the probing poses [deg]",
+        help="largest tilt of the probing poses [deg], 0-30",
     )
     corner = _add(
         group, "locate-corner", "a box corner from probing its three faces", _locate_corner
@@ -214,7 +230,10 @@ def register(commands: argparse._SubParsersAction) -> None:
         "--sensor", type=preset, default="resistive16", help="static sensor preset"
     )
     corner.add_argument(
-        "--probes-per-face", type=integer_in(1), default=3, help="presses on each face"
+        "--probes-per-face",
+        type=integer_in(3),  # taxel.active MIN_PROBES: three presses fix a plane
+        default=3,
+        help="presses on each face (>= 3)",
     )
     corner.add_argument("--force", type=positive, default=5.0, help="press force [N]")
     corner.add_argument(
