@@ -1,4 +1,5 @@
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -102,3 +103,14 @@ def test_bad_numbers_exit_2_with_one_line(tmp_path, capsys, extra, match):
     assert code == 2
     err = capsys.readouterr().err
     assert match in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.skipif(not Path("/proc/self").is_dir(), reason="needs Linux's /proc")
+def test_a_truth_that_cannot_be_written_leaves_no_frame(tmp_path, capsys):
+    # /proc takes no new files, even from root: the frame must not be left behind alone
+    out = tmp_path / "f.npy"
+    argv = ["simulate", "--sensor", "resistive16", "--object", "pen", "--force", "1"]
+    assert main([*argv, "--out", str(out), "--truth", "/proc/truth.npz"]) == 2
+    err = capsys.readouterr().err
+    assert "--truth /proc/truth.npz cannot be written" in err and err.count("\n") == 1
+    assert not out.exists() and list(tmp_path.iterdir()) == []

@@ -11,7 +11,10 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import os
 import sys
+from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -53,6 +56,32 @@ def _truth(frame: Any, sensor: Any, meta: dict[str, Any]) -> dict[str, Any]:
         "quantity": frame.quantity,
         "signal": frame.signal,
     }
+
+
+def _write_both(
+    out: Path, raw: np.ndarray, truth: Path | None, arrays: dict[str, Any] | None
+) -> None:
+    """Write the frame and its truth: both, or (when either write fails) neither."""
+    jobs: list[tuple[str, Path, Callable[[Any], None]]] = [
+        ("--out", out, lambda stream: np.save(stream, raw, allow_pickle=False))
+    ]
+    if truth is not None and arrays is not None:
+        jobs.append(("--truth", truth, lambda stream: np.savez_compressed(stream, **arrays)))
+    partials = [target.with_name(f".{target.name}.partial") for _, target, _ in jobs]
+    try:
+        for (option, target, write), partial in zip(jobs, partials, strict=True):
+            try:
+                with open(partial, "wb") as stream:
+                    write(stream)
+            except OSError as error:
+                raise CommandLineError(
+                    f"{option} {target} cannot be written ({error.strerror or error})"
+                ) from None
+        for (_, target, _), partial in zip(jobs, partials, strict=True):
+            os.replace(partial, target)
+    finally:
+        for partial in partials:
+            partial.unlink(missing_ok=True)
 
 
 def _run(arguments: argparse.Namespace) -> int:
@@ -109,11 +138,7 @@ def _run(arguments: argparse.Namespace) -> int:
         "contact_area": contact.contact_area,
         "raw_file": str(out),
     }
-    with open(out, "wb") as stream:
-        np.save(stream, raw, allow_pickle=False)
-    if truth is not None:
-        with open(truth, "wb") as stream:
-            np.savez_compressed(stream, **_truth(frame, sensor, meta))
+    _write_both(out, raw, truth, None if truth is None else _truth(frame, sensor, meta))
     noise = "noise-free" if arguments.seed is None else f"noise seed {arguments.seed}"
     sys.stdout.write(
         f"wrote {out}: {sensor.name} raw frame {' x '.join(map(str, raw.shape))} "
