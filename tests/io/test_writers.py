@@ -1,3 +1,5 @@
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -32,3 +34,12 @@ def test_bad_targets_are_named(tmp_path):
     write_text(tmp_path / "a.json", "{}")
     with pytest.raises(FileExistsError):
         write_text(tmp_path / "a.json", "[]")
+
+
+@pytest.mark.skipif(not Path("/proc/self").is_dir(), reason="needs Linux's /proc")
+def test_a_failed_write_names_the_file_asked_for():
+    # /proc takes no new files, even from root; the error names the file, not the
+    # temporary one the write goes through
+    with pytest.raises(OSError, match=r"'/proc/frame.npy'") as error:
+        write_frame("/proc/frame.npy", np.zeros((2, 2)))
+    assert ".partial" not in str(error.value)

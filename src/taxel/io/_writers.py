@@ -62,6 +62,8 @@ def _atomic(target: Path, write: Callable[[Path], Any]) -> Path:
     try:
         write(temporary)
         os.replace(temporary, target)
+    except OSError as error:  # named by the file asked for, not the temporary one
+        raise OSError(error.errno, error.strerror, str(target)) from None
     finally:
         if temporary.exists():
             temporary.unlink()
