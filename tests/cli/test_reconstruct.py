@@ -91,12 +91,17 @@ def test_a_given_lambda_and_oversampling(frame_file, tmp_path, capsys):
     [
         (["--sensor", "vhdta128"], "`frame` must have shape (128, 128)"),
         (["--sensor", "gelsight"], "`--sensor` must be one of vhdta128, harmon10x20, resistive16"),
-        (["--sensor", "resistive16", "--lambda", "-2"], "`regularization` must be >= 0"),
-        (["--sensor", "resistive16", "--lambda", "oracle"], "`regularization` must be a number"),
+        (["--sensor", "resistive16", "--lambda", "-2"], "--lambda: must be a finite number >= 0"),
+        (["--sensor", "resistive16", "--lambda", "oracle"], "--lambda: must be one of gcv"),
+        (["--sensor", "resistive16", "--lambda", "inf"], "--lambda: must be a finite number"),
+        (["--sensor", "resistive16", "--noise-level", "0"], "--noise-level: must be > 0"),
     ],
 )
 def test_errors_are_one_line_and_exit_2(frame_file, tmp_path, capsys, extra, message):
-    code = main(["reconstruct", str(frame_file), *extra, "--out", str(tmp_path / "p.npy")])
+    try:
+        code = main(["reconstruct", str(frame_file), *extra, "--out", str(tmp_path / "p.npy")])
+    except SystemExit as stop:  # argparse's own errors
+        code = stop.code
     assert code == 2
     error = capsys.readouterr().err
     assert error.count("\n") == 1 and message in error and "Traceback" not in error

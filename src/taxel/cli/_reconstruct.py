@@ -4,12 +4,32 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 from pathlib import Path
 
 import numpy as np
 
+from taxel.cli._arguments import integer_in, positive
+
 __all__ = ["register"]
+
+_RULES = ("gcv", "lcurve", "discrepancy")
+
+
+def _rule_or_lambda(text: str) -> str | float:
+    """--lambda: a rule's name, or a finite lambda >= 0."""
+    if text in _RULES:
+        return text
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"must be one of {', '.join(_RULES)} or a number >= 0, got {text!r}"
+        ) from None
+    if not (math.isfinite(value) and value >= 0):
+        raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text}")
+    return value
 
 
 def _load_frame(path: Path) -> np.ndarray:
@@ -125,13 +145,16 @@ def register(commands: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--lambda",
         dest="regularization",
+        type=_rule_or_lambda,
         default="discrepancy",
         metavar="gcv|lcurve|discrepancy|VALUE",
         help="parameter rule, or lambda >= 0 (mu [Pa] for tv); default discrepancy, with "
         "the noise estimated from the frame unless --noise-level is given",
     )
-    parser.add_argument("--noise-level", type=float, default=None, help="reading noise std")
-    parser.add_argument("--oversampling", type=int, default=1, help="load cells per taxel")
+    parser.add_argument("--noise-level", type=positive, default=None, help="reading noise std")
+    parser.add_argument(
+        "--oversampling", type=integer_in(1), default=1, help="load cells per taxel (>= 1)"
+    )
     parser.add_argument("--out", required=True, metavar="PRESSURE.npy", help="output map")
     parser.add_argument(
         "--calibration",
