@@ -75,7 +75,7 @@ def test_save_refuses_to_overwrite(tmp_path):
     path = tmp_path / "model.json"
     path.write_text("precious")
     model = fit_texture_classifier(FEATURES, LABELS)
-    with pytest.raises(FileExistsError, match="model.json exists; pass overwrite=True to replace it"):
+    with pytest.raises(FileExistsError, match="model.json exists; pass overwrite=True"):
         model.save(path)
     assert path.read_text() == "precious"
     model.save(path, overwrite=True)
