@@ -70,7 +70,11 @@ def _fit(arguments: argparse.Namespace) -> int:
         )
     )
     out = check_new_file(
-        arguments.out, suffix=".json", overwrite=arguments.overwrite, name="--out", inputs=files
+        arguments.out,
+        suffix=".json",
+        overwrite=arguments.overwrite,
+        name="--out",
+        inputs=tuple(files),
     )
     settings = {
         "reader": "fabricslide",
