@@ -122,16 +122,22 @@ def _axes_of(
 def region_moments(prepared: Prepared, mask: np.ndarray) -> tuple[dict, dict]:
     """Image moments of a contact region and of its signal above the baseline (internal).
 
-    The binary moments are taken on the contact's window alone (see `binary_moments`).
+    The binary moments are taken on the contact's window alone (see `binary_moments`); of
+    the signal's, m00, m10, m01 and the central moments are those of the whole image.
     With one region, kept in ``prepared.memo`` for the other features.
     """
     if prepared.n_regions == 1 and "moments" in prepared.memo:
         return prepared.memo["moments"]
     rows, cols = contact_window(prepared)
     binary = binary_moments(mask[rows, cols], rows.start, cols.start)
-    signal = prepared.smooth - np.float32(prepared.baseline)
-    signal *= mask
-    weighted = cv2.moments(signal)
+    # the signal is 0 off the contact: its moments are taken in the window's rows (whole
+    # rows, so x is unchanged) and moved down to the image's origin; the central moments
+    # do not move
+    signal = prepared.smooth[rows] - np.float32(prepared.baseline)
+    signal *= mask[rows]
+    window = cv2.moments(signal)
+    weighted = {key: window[key] for key in ("m00", "m10", "mu20", "mu11", "mu02")}
+    weighted["m01"] = window["m01"] + rows.start * window["m00"]
     if prepared.n_regions == 1:
         prepared.memo["moments"] = (binary, weighted)
     return binary, weighted
