@@ -32,6 +32,15 @@ def _rule_or_lambda(text: str) -> str | float:
     return value
 
 
+def _order(arguments: argparse.Namespace) -> int:
+    """--order, 0 by default; total variation penalizes the gradient, so tv takes no other."""
+    if arguments.method == "tv" and arguments.order not in (None, 1):
+        raise ValueError(
+            f"--method tv penalizes the gradient (order 1); got --order {arguments.order}"
+        )
+    return 0 if arguments.order is None else arguments.order
+
+
 def _load_frame(path: Path) -> np.ndarray:
     """The readings of FRAME, a .npy file of real numbers (NaN marks dead taxels)."""
     if not path.is_file():
@@ -83,7 +92,7 @@ def _run(arguments: argparse.Namespace) -> int:
         frame,
         spec,
         method=arguments.method,
-        order=arguments.order,
+        order=_order(arguments),
         regularization=arguments.regularization,
         noise_level=arguments.noise_level,
     )
@@ -141,7 +150,12 @@ def register(commands: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--method", default="tikhonov", choices=("tikhonov", "tsvd", "nonneg", "tv", "support")
     )
-    parser.add_argument("--order", default=0, type=int, choices=(0, 1, 2))
+    parser.add_argument(
+        "--order",
+        type=int,
+        choices=(0, 1, 2),
+        help="penalty order: 0 identity (default), 1 gradient, 2 Laplacian; tv is order 1",
+    )
     parser.add_argument(
         "--lambda",
         dest="regularization",
