@@ -86,6 +86,10 @@ def test_edge_radius_loads_its_table(capsys, small_files):
     result = json.loads(capsys.readouterr().out)
     assert result["radius_m"] == pytest.approx(3e-3, abs=0.4e-3)
     assert table.read_text() == before  # loaded, never rewritten
+    # beyond the table's radii (2.2-4.7 mm), the table says so, not only in JSON
+    args = ["active", "edge-radius", "--radius-mm", "9", "--table", str(table), "--seed", "1"]
+    assert main(args) == 0
+    assert "match: at the end of the table" in capsys.readouterr().out
 
 
 def test_stiffness_tells_the_racquet_ball_from_the_acrylic_sphere(capsys, small_files):

@@ -122,6 +122,7 @@ def _edge_radius(arguments: argparse.Namespace) -> int:
         f"(+/- {result.radius_uncertainty * 1e3:.3f} mm)",
         f"nearest table entry: {result.nearest_radius * 1e3:g} mm",
         f"error: {(result.radius - arguments.radius_mm * 1e-3) * 1e3:+.3f} mm",
+        f"match: {result.message}",
     ]
     return _emit(arguments, result.to_dict(), lines)
 
