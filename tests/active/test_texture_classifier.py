@@ -116,6 +116,7 @@ def test_load_rejects_inconsistent_content(tmp_path):
     ("kwargs", "error", "message"),
     [
         ({"labels": ["a"]}, ValueError, "`labels` has 1 entries for 4 examples"),
+        ({"labels": ["a"] * 4}, ValueError, r"at least 2 classes to tell apart, got only \['a'\]"),
         ({"n_neighbors": 0}, ValueError, r"`n_neighbors` must lie in \[1, 4\], got 0"),
         ({"n_neighbors": 1.5}, TypeError, "`n_neighbors` must be an integer, got 1.5"),
         ({"features": [[np.inf] * 3] * 4}, ValueError, "must not hold infinite values"),

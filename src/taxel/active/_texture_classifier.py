@@ -261,6 +261,10 @@ def fit_texture_classifier(
     labels = tuple(str(label) for label in labels)
     if len(labels) != examples.shape[0]:
         raise ValueError(f"`labels` has {len(labels)} entries for {examples.shape[0]} examples")
+    if len(set(labels)) < 2:
+        raise ValueError(
+            f"`labels` must name at least 2 classes to tell apart, got only {sorted(set(labels))}"
+        )
     if isinstance(n_neighbors, bool) or not isinstance(n_neighbors, int | np.integer):
         raise TypeError(f"`n_neighbors` must be an integer, got {n_neighbors!r}")
     if not 1 <= n_neighbors <= len(labels):
