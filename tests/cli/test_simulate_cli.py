@@ -65,6 +65,8 @@ def test_the_can_rim_crosses_the_sensor_by_default(tmp_path):
         (["--sensor", "resistive99", "--object", "pen"], "--sensor: must be one of vhdta128"),
         (["--sensor", "resistive16", "--object", "cup"], "`name` must be one of pen"),
         (["--sensor", "resistive16", "--object", "can", "--x", "0"], "is over no cell of the"),
+        (["--sensor", "resistive16", "--object", "pen", "--x", "10"], "lowest point off the 32"),
+        (["--sensor", "resistive16", "--object", "sphere", "--y", "-0.02"], "2.64 mm higher up"),
         (["--sensor", "capacitive4x4", "--object", "punch"], "refine the grid with --overs"),
         (["--sensor", "resistive16", "--object", "pen", "--angle", "nan"], "must be finite"),
     ],

@@ -84,6 +84,38 @@ def _write_both(
             partial.unlink(missing_ok=True)
 
 
+def _check_lowest_point_on_sensor(
+    indenter: Any,
+    heights: np.ndarray,
+    sensor: Any,
+    position: tuple[float, float],
+    arguments: argparse.Namespace,
+) -> None:
+    """Refuse an object whose lowest point lies off the array (its edge would meet a flank).
+
+    Such an object is pressed by its side, or not at all, not as asked. Only an origin off
+    the array is judged, by the object's height there (a can's origin, the centre of its
+    rim, has no surface: its rim crosses the array, and it passes).
+    """
+    width, height = sensor.geometry.extent
+    x, y = position
+    if abs(x) <= width / 2 and abs(y) <= height / 2:
+        return
+    at_origin = indenter.heights(
+        np.array([x]), np.array([y]), position=position, angle=arguments.angle
+    )[0]
+    finite = heights[np.isfinite(heights)]
+    if not np.isfinite(at_origin) or finite.size == 0:
+        return
+    above = float(finite.min() - at_origin)
+    if above > max(sensor.load_grid.spacing):
+        raise CommandLineError(
+            f"the {arguments.object} at x = {x:g} m, y = {y:g} m has its lowest point off "
+            f"the {width * 1e3:g} x {height * 1e3:g} mm array, which would meet it "
+            f"{above * 1e3:.3g} mm higher up: move it onto the sensor"
+        )
+
+
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.mechanics import make_indenter
     from taxel.sensor import make_sensor
@@ -105,6 +137,7 @@ def _run(arguments: argparse.Namespace) -> int:
     y = default_y if arguments.y is None else arguments.y
     cell_x, cell_y = sensor.load_grid.coordinates()
     heights = indenter.heights(cell_x, cell_y, position=(x, y), angle=arguments.angle)
+    _check_lowest_point_on_sensor(indenter, heights, sensor, (x, y), arguments)
     if not np.any(np.isfinite(heights)):
         width, height = (size * 1e3 for size in sensor.geometry.extent)
         cell = sensor.load_grid.spacing[1] * 1e3
