@@ -423,3 +423,49 @@ def test_outlines_of_one_region_in_the_order_findcontours_lists_them(seed):
         listed, _ = cv2.findContours(region, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)
         assert len(found) == len(listed)
         assert all(np.array_equal(a, b) for a, b in zip(found, listed, strict=True))
+
+
+def _sector(rng, size=64):
+    """A random annular sector (an arc of a rim, a C, a near-ring) as a 0/1 pressure image."""
+    y, x = np.mgrid[:size, :size].astype(float)
+    centre = rng.uniform(-0.5 * size, 1.5 * size, 2)
+    radius = rng.uniform(6.0, 1.5 * size)
+    width = rng.uniform(2.0, 8.0)
+    start, span = rng.uniform(0.0, 2 * math.pi), rng.uniform(math.pi / 3, 1.9 * math.pi)
+    r = np.hypot(x - centre[0], y - centre[1])
+    angle = (np.arctan2(y - centre[1], x - centre[0]) - start) % (2 * math.pi)
+    return ((np.abs(r - radius) < width / 2) & (angle < span)).astype(float)
+
+
+def test_diameter_test_skips_only_contacts_it_cannot_pass(monkeypatch):
+    # the early exit (the fitted centre well outside the contact's hull) must give the
+    # walk's own answer: compare with the walk forced on every image
+    from taxel.features import _holes
+    from taxel.features._image import prepare
+
+    rng = np.random.default_rng(11)
+    images = [_sector(rng) for _ in range(300)]
+    images = [image for image in images if image.sum() >= 20]
+
+    off_hull = 0
+
+    def run_all():
+        nonlocal off_hull
+        answers = []
+        for image in images:
+            prepared = prepare(image, 1e-3, smoothing=0)
+            contours = _holes.outline_contours(prepared)
+            cols, rows = _holes.outline_taxels(prepared, contours)
+            answers.append(_holes.diameter_test(prepared, cols, rows))
+            fitted = _holes.taubin_circle(cols.astype(float), rows.astype(float))
+            hull = cv2.convexHull(np.concatenate(contours))
+            off_hull += bool(fitted) and cv2.pointPolygonTest(hull, fitted[:2], True) < -1.5
+        return answers
+
+    skipping = run_all()
+    monkeypatch.setattr(_holes, "_CENTRE_OFF_HULL", math.inf)
+    walking = run_all()
+    assert skipping == walking
+    # the comparison covers both answers, and many images the exit applies to
+    assert 10 < sum(walking) < len(images) - 10
+    assert off_hull > len(images) // 2  # counted over both runs

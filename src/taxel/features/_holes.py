@@ -15,6 +15,7 @@ import numpy as np
 from taxel.features._fitting import CircleFit, taubin_circle
 from taxel.features._gaps import HoleReport, SlotReport, gaps_core
 from taxel.features._image import Prepared, prepare
+from taxel.features._window import contact_hull
 
 __all__ = [
     "detect_holes",
@@ -35,6 +36,11 @@ _DIRECTIONS = np.concatenate(
     )
 )[:, None]
 _DIRECTIONS.flags.writeable = False
+# How far outside the contact's convex hull the fitted centre may lie and a diameter still
+# meet the contact on both sides of it [taxels]: the sample read as the centre lies up to
+# half a step from it, and a sample reads the taxel it rounds to, up to sqrt(2) / 2 off
+# the diameter (1.21; with a margin).
+_CENTRE_OFF_HULL = 1.5
 
 
 def diameter_test(
@@ -66,6 +72,14 @@ def diameter_test(
     shape = prepared.mask.shape
     if not math.isfinite(radius) or radius < 2 or radius > 2 * max(shape):
         return False
+    # a diameter crossing the outline twice on each side meets the contact on both sides
+    # of the centre, so the centre lies in the contact's hull (up to the sampling): an arc
+    # of less than half a circle, whose centre lies beyond its chord, has no such diameter
+    hull = contact_hull(prepared, outline_contours(prepared))
+    if hull is not None and hull.shape[0] >= 3:
+        inside = cv2.pointPolygonTest(hull, (float(centre_c), float(centre_r)), True)
+        if inside < -_CENTRE_OFF_HULL:
+            return False
     # one taxel per step: the contact's walls are at least 2 taxels thick after smoothing
     steps = np.arange(-_DIAMETER_REACH * radius, _DIAMETER_REACH * radius, 1.0)
     # the samples' columns (first 16 rows) and rows (last 16), rounded to taxels

@@ -12,7 +12,7 @@ import numpy as np
 
 from taxel._validation import as_finite_array
 from taxel.features._image import Prepared, prepare
-from taxel.features._window import contact_area, contact_window
+from taxel.features._window import contact_area, contact_hull, contact_window
 
 __all__ = ["ContactPlane", "contact_plane", "plane_core"]
 
@@ -78,11 +78,7 @@ def plane_core(
         contours = list(
             cv2.findContours(mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE, offset=(c0, r0))[0]
         )
-    if len(contours) == 1:
-        points = contours[0]
-    else:
-        points = np.concatenate(contours) if contours else np.zeros((0, 1, 2), np.int32)
-    hull = cv2.convexHull(points) if points.shape[0] >= 3 else None
+    hull = contact_hull(prepared, contours)
     hull_area = float(cv2.contourArea(hull)) if hull is not None else 0.0
     perimeter = cv2.arcLength(hull, True) if hull is not None else 0.0
     # a taxel is a unit square: the hull through taxel centres misses half a taxel all round

@@ -6,11 +6,14 @@ rather than over the whole image; each is computed once and kept in ``prepared.m
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import cv2
+import numpy as np
 
 from taxel.features._image import Prepared
 
-__all__ = ["WHOLE_IMAGE", "contact_area", "contact_box", "contact_window"]
+__all__ = ["WHOLE_IMAGE", "contact_area", "contact_box", "contact_hull", "contact_window"]
 
 # Images of at most this many taxels are read whole (see `contact_window`).
 WHOLE_IMAGE = 32 * 32
@@ -56,3 +59,18 @@ def contact_window(prepared: Prepared, margin: int = 0) -> tuple[slice, slice]:
             )
         prepared.memo[("window", margin)] = window
     return window
+
+
+def contact_hull(prepared: Prepared, contours: Sequence[np.ndarray]) -> np.ndarray | None:
+    """Convex hull of the contact's taxel centres (internal; kept in ``prepared.memo``).
+
+    `contours`: the contact's outlines (`outline_contours`); the hull of their points is
+    that of every contact taxel. None with fewer than 3 outline points.
+    """
+    if "hull" not in prepared.memo:
+        if len(contours) == 1:
+            points = contours[0]
+        else:
+            points = np.concatenate(contours) if contours else np.zeros((0, 1, 2), np.int32)
+        prepared.memo["hull"] = cv2.convexHull(points) if points.shape[0] >= 3 else None
+    return prepared.memo["hull"]
