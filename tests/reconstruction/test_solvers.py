@@ -257,6 +257,10 @@ def test_batches_are_solved_frame_by_frame():
             "`regularization` must be >= 0, got -1",
         ),
         (
+            lambda: reconstruct(np.zeros((16, 16)), "resistive16", regularization=1e200),
+            "`regularization` must be <= 1e\\+150 .*, got 1e\\+200",
+        ),
+        (
             lambda: reconstruct(np.zeros((16, 16)), "resistive16", regularization="oracle"),
             "`regularization` must be a number >= 0 or one of",
         ),

@@ -27,8 +27,12 @@ def _rule_or_lambda(text: str) -> str | float:
         raise argparse.ArgumentTypeError(
             f"must be one of {', '.join(_RULES)} or a number >= 0, got {text!r}"
         ) from None
-    if not (math.isfinite(value) and value >= 0):
-        raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text}")
+    from taxel.reconstruction import LARGEST_REGULARIZATION  # only for a number
+
+    if not (math.isfinite(value) and 0 <= value <= LARGEST_REGULARIZATION):
+        raise argparse.ArgumentTypeError(
+            f"must be a number from 0 to {LARGEST_REGULARIZATION:g}, got {text}"
+        )
     return value
 
 

@@ -15,7 +15,8 @@ Solvers (class: setup once, then solve frame after frame; function: one call)
     reconstruct, naive_inverse, solver_for, METHODS
 Parameter choice
     RULES ("gcv", "lcurve", "discrepancy"; the default is "discrepancy" with the noise
-    estimated from the frame), estimate_noise_level, ParameterCurve, lcurve_curvature,
+    estimated from the frame), LARGEST_REGULARIZATION (the largest lambda given),
+    estimate_noise_level, ParameterCurve, lcurve_curvature,
     estimate_noise (Wahba's GCV-based estimator, kept for comparison)
 Results
     ReconstructionResult, ShapeResult
@@ -31,6 +32,7 @@ penalty is lambda^2 |A|^2/|L|^2 |L x|^2) or, for total variation, mu [Pa];
 
 from taxel.reconstruction._admm import ADMMSolver
 from taxel.reconstruction._choice import RULES, ParameterCurve, lcurve_curvature
+from taxel.reconstruction._frames import LARGEST_REGULARIZATION
 from taxel.reconstruction._operator import SensorOperator, forward_operator
 from taxel.reconstruction._reconstruct import (
     METHODS,
@@ -54,6 +56,7 @@ from taxel.reconstruction._tikhonov import TikhonovSolver, estimate_noise
 
 __all__ = [
     "FORWARD_MODEL_PRESETS",
+    "LARGEST_REGULARIZATION",
     "METHODS",
     "RULES",
     "ADMMSolver",

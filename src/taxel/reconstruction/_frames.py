@@ -10,7 +10,10 @@ from taxel._validation import check_positive
 from taxel.reconstruction._choice import RULES
 from taxel.reconstruction._spec import ForwardModelSpec
 
-__all__ = ["as_frames", "parse_regularization", "restore_batch"]
+__all__ = ["LARGEST_REGULARIZATION", "as_frames", "parse_regularization", "restore_batch"]
+
+# The largest lambda taken: the solvers use its square, which must stay a finite float.
+LARGEST_REGULARIZATION = 1e150
 
 
 def as_frames(frames: Any, spec: ForwardModelSpec) -> tuple[np.ndarray, tuple[int, ...]]:
@@ -69,4 +72,10 @@ def parse_regularization(value: Any) -> tuple[str, float | None]:
                 f"`regularization` must be a number >= 0 or one of {', '.join(RULES)}; "
                 f"got {value!r}"
             ) from None
-    return "given", check_positive("regularization", value, allow_zero=True)
+    value = check_positive("regularization", value, allow_zero=True)
+    if value > LARGEST_REGULARIZATION:
+        raise ValueError(
+            f"`regularization` must be <= {LARGEST_REGULARIZATION:g} (the solvers square it), "
+            f"got {value:g}"
+        )
+    return "given", value

@@ -88,7 +88,8 @@ def reconstruct(
         Penalty order (identity, gradient, Laplacian) of tikhonov, tsvd and nonneg, and
         of the first stage of support.
     regularization : float or {"gcv", "lcurve", "discrepancy"}, default "discrepancy"
-        lambda >= 0 (relative units; 0 is the naive inverse), mu [Pa] for "tv", or a rule.
+        lambda >= 0 (relative units; 0 is the naive inverse), mu [Pa] for "tv", or a rule;
+        a number is at most `LARGEST_REGULARIZATION` (1e150).
         The default, the discrepancy principle with the noise estimated from the frame,
         is the rule that comes closest to the best lambda in the benchmark.
     noise_level : float, optional

@@ -146,7 +146,8 @@ class TikhonovSolver:
         frame : array_like
             Calibrated readings. Values at dead taxels are ignored (NaN allowed there).
         regularization : float or {"gcv", "lcurve", "discrepancy"}, default "discrepancy"
-            lambda >= 0 (0 is the naive, unregularized inverse), or the rule choosing it.
+            lambda from 0 (the naive, unregularized inverse) to `LARGEST_REGULARIZATION`
+            (1e150), or the rule choosing it.
         noise_level : float, optional
             Reading noise std for the discrepancy principle; default the spec's, else
             estimated from each frame (`estimate_noise_level`).
