@@ -182,6 +182,13 @@ def test_late_channel_is_armed_by_incipient_slip_and_sees_a_speed_change():
     found = late.run(_blob_frames(ramp), frame_rate=1000.0)
     assert found.first("gross") is None and 60 < found.first("incipient").frame <= 65
     assert np.nanmax(found.late_statistic[60:90]) > late.late_threshold
+    # the backup is armed the same way: the static run-ahead alone calls the ramp's start
+    # gross slip, the backup behind a (deaf) PVDF array does not
+    frames, piezo = _blob_frames(ramp), np.random.default_rng(1).normal(0, 1, (260, 4, 4))
+    alone = SlipDetector(gross_threshold=5.0).run(frames, frame_rate=1000.0).first("gross")
+    assert alone.channel == "speed" and 60 < alone.frame <= 70
+    backup = SlipDetector(piezo_threshold=1e9, backup_threshold=5.0, late_threshold=None)
+    assert backup.run(frames, piezo, frame_rate=1000.0).first("gross") is None
     # the same track speeding up to 20 mm/s at frame 160: gross slip, from the late channel
     slide = ramp + 15e-3 * np.clip(frame - 160, 0, None) / 1000
     gross = late.run(_blob_frames(slide), frame_rate=1000.0).first("gross")

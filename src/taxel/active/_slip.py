@@ -32,7 +32,8 @@ sliding, in which case no onset is reported. Then:
   decides only past the higher `backup_threshold`: at `gross_threshold` it adds premature
   alarms (the Cattaneo-Mindlin shift speeds up without bound as the stick disc vanishes,
   which looks like the start of sliding), but above it, it catches most of the slips whose
-  onset the PVDF misses, 5-20 frames late.
+  onset the PVDF misses, 5-20 frames late. As a backup it is armed like the late channel
+  (below): the start of a load ramp can pass its threshold too.
 - gross slip, late: the same run-ahead against the track of a reference window that ends
   12 frames before the current frame (channel 'late', past `late_threshold`, with or
   without PVDF frames). A slow slide (10-30 mm/s) reaches its sliding speed over several
@@ -186,7 +187,8 @@ class SlipDetector:
         CUSUM threshold h of the piezo channel.
     backup_threshold : float or None, default 8.0
         With PVDF frames, the run-ahead still decides gross slip past this threshold (a
-        backup for onsets the PVDF misses); None leaves it out.
+        backup for onsets the PVDF misses), counted once its reference window lies wholly
+        after the incipient decision; None leaves it out.
     late_threshold : float or None, default 15.5
         Run-ahead past the track of a reference window ending 12 frames before, in noise
         standard deviations, counted once that window lies wholly after the incipient
@@ -372,7 +374,7 @@ class SlipDetector:
         if not np.all(np.isnan(piezo_statistic)):
             channels = [("piezo", piezo_statistic, self.piezo_threshold)]
             if self.backup_threshold is not None:
-                channels.append(("speed", speed_statistic, self.backup_threshold))
+                channels.append(("speed", armed(speed_statistic, _GAP), self.backup_threshold))
         if self.late_threshold is not None:
             channels.append(
                 ("late", armed(detection.late_statistic, _LATE_GAP), self.late_threshold)
