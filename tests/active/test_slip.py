@@ -144,8 +144,12 @@ def test_static_backup_catches_what_the_piezo_misses(slip):
     alone = _detector(gross_threshold=5.0).run(slip.static_frames, frame_rate=1000.0)
     assert gross.channel == "speed" and gross.frame == alone.first("gross").frame
     # left out, nothing decides; and the earlier of the two channels wins
-    off = _detector(piezo_threshold=1e9, backup_threshold=None)
+    off = _detector(piezo_threshold=1e9, backup_threshold=None, late_threshold=None)
     assert off.run(slip.static_frames, slip.piezo_frames, frame_rate=1000.0).first("gross") is None
+    # the late channel alone (the long gap's run-ahead) still finds the slide, after the onset
+    late = _detector(piezo_threshold=1e9, backup_threshold=None)
+    slide = late.run(slip.static_frames, slip.piezo_frames, frame_rate=1000.0).first("gross")
+    assert slide.channel == "late" and -2 <= slide.frame - slip.gross_frame <= 20
     both = _detector(backup_threshold=5.0).run(
         slip.static_frames, slip.piezo_frames, frame_rate=1000.0
     )
@@ -156,6 +160,41 @@ def test_static_backup_catches_what_the_piezo_misses(slip):
     assert both.first("gross").frame == first
     with pytest.raises(ValueError, match="`backup_threshold` must be > 0"):
         SlipDetector(backup_threshold=-1.0)
+
+
+def _blob_frames(centre):
+    rows, cols = np.mgrid[:16, :16] * 2e-3
+    frames = np.array(
+        [
+            1000 * np.exp(-((cols - 0.012 - c) ** 2 + (rows - 0.015) ** 2) / 2 / 0.004**2)
+            for c in centre
+        ]
+    )
+    return frames + np.random.default_rng(0).normal(0, 2, frames.shape)
+
+
+def test_late_channel_is_armed_by_incipient_slip_and_sees_a_speed_change():
+    frame = np.arange(260)
+    late = SlipDetector(gross_threshold=1e9)  # static frames: only the late channel decides
+    # from rest to 5 mm/s at frame 60 (a load ramp starting): incipient slip, not gross,
+    # though the long gap's run-ahead is far past its threshold there
+    ramp = 5e-3 * np.clip(frame - 60, 0, None) / 1000
+    found = late.run(_blob_frames(ramp), frame_rate=1000.0)
+    assert found.first("gross") is None and 60 < found.first("incipient").frame <= 65
+    assert np.nanmax(found.late_statistic[60:90]) > late.late_threshold
+    # the backup is armed the same way: the static run-ahead alone calls the ramp's start
+    # gross slip, the backup behind a (deaf) PVDF array does not
+    frames, piezo = _blob_frames(ramp), np.random.default_rng(1).normal(0, 1, (260, 4, 4))
+    alone = SlipDetector(gross_threshold=5.0).run(frames, frame_rate=1000.0).first("gross")
+    assert alone.channel == "speed" and 60 < alone.frame <= 70
+    backup = SlipDetector(piezo_threshold=1e9, backup_threshold=5.0, late_threshold=None)
+    assert backup.run(frames, piezo, frame_rate=1000.0).first("gross") is None
+    # the same track speeding up to 20 mm/s at frame 160: gross slip, from the late channel
+    slide = ramp + 15e-3 * np.clip(frame - 160, 0, None) / 1000
+    gross = late.run(_blob_frames(slide), frame_rate=1000.0).first("gross")
+    assert gross.channel == "late" and 160 <= gross.frame <= 165
+    with pytest.raises(ValueError, match="`late_threshold` must be > 0"):
+        SlipDetector(late_threshold=0.0)
 
 
 def test_no_alarm_on_a_hold_or_on_steady_sliding(hold, steady):

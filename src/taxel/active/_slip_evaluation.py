@@ -212,8 +212,8 @@ class SlipCalibration:
     Attributes
     ----------
     detector : SlipDetector
-        The detector with the chosen `gross_threshold`, `piezo_threshold` and
-        `backup_threshold`.
+        The detector with the chosen `gross_threshold`, `piezo_threshold`,
+        `backup_threshold` and `late_threshold`.
     evaluation : SlipEvaluation
         Its score on the calibration trials, with their PVDF frames.
     static_evaluation : SlipEvaluation
@@ -236,6 +236,7 @@ class SlipCalibration:
             "gross_threshold": self.detector.gross_threshold,
             "piezo_threshold": self.detector.piezo_threshold,
             "backup_threshold": self.detector.backup_threshold,
+            "late_threshold": self.detector.late_threshold,
             "false_alarm_budget": self.false_alarm_budget,
             "latency_frames": self.latency,
             "evaluation": self.evaluation.to_dict(),
@@ -252,6 +253,7 @@ def calibrate_slip_detector(
     gross_thresholds: Any = None,
     piezo_thresholds: Any = None,
     backup_thresholds: Any = None,
+    late_thresholds: Any = None,
     **settings: Any,
 ) -> SlipCalibration:
     """Set a slip detector's thresholds on calibration trials for a false-alarm budget.
@@ -268,9 +270,10 @@ def calibrate_slip_detector(
         onset, then those detected at all, then the threshold itself (the largest of equals).
     early_tolerance : int, default 2
         As in `score_slip_detection`.
-    gross_thresholds, piezo_thresholds, backup_thresholds : array_like, optional
-        Candidates; default 3-20 in steps of 0.5, 4-60 in steps of 1, and 3-20 in steps
-        of 0.5 (the backup left out, None, is always a candidate too).
+    gross_thresholds, piezo_thresholds, backup_thresholds, late_thresholds : array_like, optional
+        Candidates; default 3-20 in steps of 0.5, 4-60 in steps of 1, 3-20 in steps
+        of 0.5 and 3-40 in steps of 0.5 (the backup and the late channel left out, None,
+        are always candidates too).
     **settings
         Other `SlipDetector` settings (fixed); `piezo_time_constant` defaults to that of
         `slip_sensors`' PVDF array.
@@ -284,7 +287,9 @@ def calibrate_slip_detector(
     The statistics of each trial are computed once; the thresholds only decide on them
     (`SlipDetector.decide`). `gross_threshold` is set on the static channel alone (it
     decides without PVDF frames), then `piezo_threshold` with the PVDF frames and no
-    backup, then `backup_threshold` with both.
+    backup, then `backup_threshold` with both, each without the late channel; then
+    `late_threshold` with all of them (it decides late, so it adds to the slips detected
+    at all rather than within `latency`, unless it brings alarms).
     Candidates over the budget are kept only if none is within it (then the one with the
     fewest false alarms wins).
     """
@@ -294,6 +299,7 @@ def calibrate_slip_detector(
     gross_grid = np.arange(3.0, 20.01, 0.5) if gross_thresholds is None else gross_thresholds
     piezo_grid = np.arange(4.0, 60.01, 1.0) if piezo_thresholds is None else piezo_thresholds
     backup_grid = np.arange(3.0, 20.01, 0.5) if backup_thresholds is None else backup_thresholds
+    late_grid = np.arange(3.0, 40.01, 0.5) if late_thresholds is None else late_thresholds
     settings = {**_default_settings(), **settings}
     fused = [_detect(SlipDetector(**settings), s) for s in sequences]
     static = [replace(f, piezo_statistic=np.full_like(f.piezo_statistic, np.nan)) for f in fused]
@@ -310,17 +316,25 @@ def calibrate_slip_detector(
             ranked.append(((-over, quick, result.latencies.size, value), detector, result))
         return max(ranked, key=lambda item: item[0])
 
-    gross = best("gross_threshold", gross_grid, static, {})
-    chosen = {"gross_threshold": gross[1].gross_threshold, "backup_threshold": None}
+    gross = best("gross_threshold", gross_grid, static, {"late_threshold": None})
+    chosen = {
+        "gross_threshold": gross[1].gross_threshold,
+        "backup_threshold": None,
+        "late_threshold": None,
+    }
     piezo = best("piezo_threshold", piezo_grid, fused, chosen)
     chosen["piezo_threshold"] = piezo[1].piezo_threshold
     # the backup left out (inf) wins a tie: it is the largest candidate
     candidates = np.append(np.asarray(backup_grid, dtype=float), np.inf)
     backup = best("backup_threshold", candidates, fused, chosen)
-    detector = backup[1]
+    chosen["backup_threshold"] = backup[1].backup_threshold
+    late = best(
+        "late_threshold", np.append(np.asarray(late_grid, dtype=float), np.inf), fused, chosen
+    )
+    detector = late[1]
     return SlipCalibration(
         detector=detector,
-        evaluation=backup[2],
+        evaluation=late[2],
         static_evaluation=_tally(sequences, [detector.decide(f) for f in static], early_tolerance),
         false_alarm_budget=budget,
         latency=int(latency),
