@@ -358,18 +358,18 @@ class SlipDetector:
         if moved.size:
             found.append(("incipient", int(moved[0]) + self.warm_up, "displacement"))
 
-        # with PVDF frames the static run-ahead decides only past the backup threshold: at
-        # its own threshold it adds premature alarms (the Cattaneo-Mindlin shift speeds up)
         def armed(statistic: np.ndarray, gap: int) -> np.ndarray:
             # counts once its reference window starts at or after the incipient decision:
             # the track it extrapolates is the loaded contact's, not the rest before the
             # load began (whose end, a ramp's start, is incipient slip)
-            late = np.full(statistic.shape, np.nan)
+            counted = np.full(statistic.shape, np.nan)
             if moved.size:
                 start = int(moved[0]) + self.warm_up + _REFERENCE + gap - 1
-                late[start:] = statistic[start:]
-            return late
+                counted[start:] = statistic[start:]
+            return counted
 
+        # with PVDF frames the static run-ahead decides only past the backup threshold: at
+        # its own threshold it adds premature alarms (the Cattaneo-Mindlin shift speeds up)
         channels = [("speed", speed_statistic, self.gross_threshold)]
         if not np.all(np.isnan(piezo_statistic)):
             channels = [("piezo", piezo_statistic, self.piezo_threshold)]

@@ -327,7 +327,8 @@ def extract(
     test = False
     if not convex:
         # the outline's circle, if the type fitted it; else the test fits the circle alone
-        test = diameter_test(prepared, cols, rows, fits[0][1] if fits and fits[0] else None)
+        circle = fits[0][1] if fits and fits[0] else None
+        test = diameter_test(prepared, cols, rows, circle, contours=contours)
     hole_report = HoleReport(bool(holes), len(holes), tuple(holes), test)
     slot_report = SlotReport(bool(slots), len(slots), tuple(slots))
     located = _locate(contact, shape, plane, depth_map, pose_matrix)

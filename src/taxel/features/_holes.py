@@ -48,6 +48,8 @@ def diameter_test(
     cols: np.ndarray,
     rows: np.ndarray,
     circle: CircleFit | None = None,
+    *,
+    contours: Sequence[np.ndarray] | None = None,
 ) -> bool:
     """The seed's hole test on a prepared image and its outline taxels (internal core).
 
@@ -56,7 +58,8 @@ def diameter_test(
     (the fit to both rims of a washer lies between them): a hole is present when some
     diameter crosses the contact's outline 4 times, twice on each side of the fitted
     centre (object rim, hole rim), with the centre off contact. Crossings are counted on
-    the contact mask, which a sampled line cannot slip through at a diagonal.
+    the contact mask, which a sampled line cannot slip through at a diagonal. `contours`:
+    the outlines `cols` and `rows` come from, if at hand (for the contact's hull).
     """
     if rows.size < 8:
         return False
@@ -75,7 +78,9 @@ def diameter_test(
     # a diameter crossing the outline twice on each side meets the contact on both sides
     # of the centre, so the centre lies in the contact's hull (up to the sampling): an arc
     # of less than half a circle, whose centre lies beyond its chord, has no such diameter
-    hull = contact_hull(prepared, outline_contours(prepared))
+    if contours is None:
+        contours = outline_contours(prepared)
+    hull = contact_hull(prepared, contours)
     if hull is not None and hull.shape[0] >= 3:
         inside = cv2.pointPolygonTest(hull, (float(centre_c), float(centre_r)), True)
         if inside < -_CENTRE_OFF_HULL:
@@ -170,7 +175,8 @@ def detect_holes(
     """
     prepared = prepare(image, sensor_or_pitch, smoothing=smoothing, defects=defects)
     holes, _, _ = gaps_core(prepared)
-    test = diameter_test(prepared, *outline_taxels(prepared))
+    contours = outline_contours(prepared)
+    test = diameter_test(prepared, *outline_taxels(prepared, contours), contours=contours)
     return HoleReport(bool(holes), len(holes), tuple(holes), test)
 
 
