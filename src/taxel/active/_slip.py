@@ -10,10 +10,12 @@ Two signals (chapter seed, section 25.3, "Piezoelectric"; Ellis seed, section 2.
 - The PVDF array (its charge amplifier sees only changes, eq. 25.17-25.18), its leak undone
   when the amplifier's time constant is known: each frame is predicted by a straight line
   through the previous frames, and the innovation is projected on the direction in which
-  the pattern has been moving (`motion_innovation`). The onset of gross slip jerks the
-  pattern along that direction (the friction drops from mu_s N to mu_k N) and the
-  stick-slip vibrations of the sliding contact shake it; a held or steadily loaded contact
-  leaves only noise.
+  the pattern has been moving (`motion_innovation`). The onset of gross slip is an
+  innovation of either sign along that direction: the first frames read as braking
+  (backward: the friction drops from mu_s N to mu_k N, and the traction's stress under the
+  pad with it), the forward innovations of the sliding pattern and of its stick-slip
+  vibrations follow from about 4 frames after the onset; the CUSUM squares the innovation,
+  so both count. A held or steadily loaded contact leaves only noise.
 
 Decisions are causal (frame k uses frames <= k). The first `warm_up` frames set each
 channel's noise level and the initial state: holding (the pattern at rest) or already

@@ -121,10 +121,13 @@ def motion_innovation(
     :math:`u_k \propto F_{k-M-1} - F_{k-M-1-W}` along which the pattern has been moving
     (older frames than the prediction's, so that the two carry independent noise):
     :math:`z_k = u_k \cdot e_k / (\sigma \sqrt{1 + \sum w_j^2})`. The onset of gross slip
-    makes the pattern lurch along that direction (the friction drops from mu_s N to
-    mu_k N, and the traction's own stress under the pad with it), and the stick-slip
-    vibrations of the sliding contact shake it along the same direction; both are
-    innovations the straight line cannot follow. Projecting keeps one degree of freedom
+    departs from the line along that direction, but not at first forward: the friction
+    drops from mu_s N to mu_k N, and the traction's own stress under the pad with it, so
+    the first frames after the onset read as braking (z < 0; on simulated trials the mean z
+    is about -2.5 and -2.2 one and two frames after the onset). The forward innovations of
+    the sliding pattern and of its stick-slip vibrations follow from about 4 frames after
+    the onset. Both are innovations the straight line cannot follow, which is why the
+    detector squares z rather than test its sign. Projecting keeps one degree of freedom
     instead of one per taxel: the energy of a direction known in advance is seen
     sqrt(taxels) times more clearly than the energy of the whole frame.
     """
