@@ -469,3 +469,22 @@ def test_diameter_test_skips_only_contacts_it_cannot_pass(monkeypatch):
     # the comparison covers both answers, and many images the exit applies to
     assert 10 < sum(walking) < len(images) - 10
     assert off_hull > len(images) // 2  # counted over both runs
+
+
+def test_binary_moments_of_a_crop_equal_opencvs_on_the_whole_image():
+    # the crop's plain moments, shifted, must give the binary moments of the whole image
+    # bit for bit (their rounding depends on the origin)
+    from taxel.features._moments import binary_moments
+
+    rng = np.random.default_rng(5)
+    for _ in range(300):
+        rows, cols = (int(n) for n in rng.integers(3, 140, 2))
+        whole = np.zeros((rows, cols), np.uint8)
+        top, left = int(rng.integers(0, rows)), int(rng.integers(0, cols))
+        bottom, right = int(rng.integers(top + 1, rows + 1)), int(rng.integers(left + 1, cols + 1))
+        inside = rng.random((bottom - top, right - left)) < rng.uniform(0.0, 1.0)
+        whole[top:bottom, left:right] = inside
+        expected = cv2.moments(whole, binaryImage=True)
+        for row0, col0 in ((top, left), (0, 0)):
+            found = binary_moments(whole[row0:bottom, col0:right], row0, col0)
+            assert all(found[key] == expected[key] for key in found)
