@@ -488,3 +488,18 @@ def test_binary_moments_of_a_crop_equal_opencvs_on_the_whole_image():
         for row0, col0 in ((top, left), (0, 0)):
             found = binary_moments(whole[row0:bottom, col0:right], row0, col0)
             assert all(found[key] == expected[key] for key in found)
+
+
+def test_residual_of_integer_frames_by_one_filter_equals_the_sums():
+    # frames of up to 16-bit integers take the residual from one filter: it must give the
+    # four sums' values exactly (every partial sum is a multiple of 1/4, exact in float32)
+    from taxel.features._image import laplacian_residual
+
+    rng = np.random.default_rng(6)
+    for _ in range(100):
+        rows, cols = (int(n) for n in rng.integers(3, 140, 2))
+        frame = rng.integers(0, 2**16, (rows, cols)).astype(np.float32)
+        for step in (1, 2):
+            summed = laplacian_residual(frame, step)
+            filtered = laplacian_residual(frame, step, whole=True)
+            assert np.array_equal(summed, filtered)
