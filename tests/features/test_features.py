@@ -469,3 +469,37 @@ def test_diameter_test_skips_only_contacts_it_cannot_pass(monkeypatch):
     # the comparison covers both answers, and many images the exit applies to
     assert 10 < sum(walking) < len(images) - 10
     assert off_hull > len(images) // 2  # counted over both runs
+
+
+def test_binary_moments_of_a_crop_equal_opencvs_on_the_whole_image():
+    # the crop's plain moments, shifted, must give the binary moments of the whole image
+    # bit for bit (their rounding depends on the origin)
+    from taxel.features._moments import binary_moments
+
+    rng = np.random.default_rng(5)
+    for _ in range(300):
+        rows, cols = (int(n) for n in rng.integers(3, 140, 2))
+        whole = np.zeros((rows, cols), np.uint8)
+        top, left = int(rng.integers(0, rows)), int(rng.integers(0, cols))
+        bottom, right = int(rng.integers(top + 1, rows + 1)), int(rng.integers(left + 1, cols + 1))
+        inside = rng.random((bottom - top, right - left)) < rng.uniform(0.0, 1.0)
+        whole[top:bottom, left:right] = inside
+        expected = cv2.moments(whole, binaryImage=True)
+        for row0, col0 in ((top, left), (0, 0)):
+            found = binary_moments(whole[row0:bottom, col0:right], row0, col0)
+            assert all(found[key] == expected[key] for key in found)
+
+
+def test_residual_of_integer_frames_by_one_filter_equals_the_sums():
+    # frames of up to 16-bit integers take the residual from one filter: it must give the
+    # four sums' values exactly (every partial sum is a multiple of 1/4, exact in float32)
+    from taxel.features._image import laplacian_residual
+
+    rng = np.random.default_rng(6)
+    for _ in range(100):
+        rows, cols = (int(n) for n in rng.integers(3, 140, 2))
+        frame = rng.integers(0, 2**16, (rows, cols)).astype(np.float32)
+        for step in (1, 2):
+            summed = laplacian_residual(frame, step)
+            filtered = laplacian_residual(frame, step, whole=True)
+            assert np.array_equal(summed, filtered)

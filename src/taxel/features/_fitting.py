@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -222,6 +223,27 @@ def _centred_moments(
     return m_uu, m_vv, m_uv, m_uz, m_vz, m_zz
 
 
+def _from_known(
+    x: np.ndarray, y: np.ndarray, weight: np.ndarray, known: Mapping[str, float]
+) -> tuple[tuple[float, float, float, np.ndarray], tuple[float, ...]]:
+    """`centred` and `_centred_moments` of weighted points whose image moments are known.
+
+    `known`: m00, m10 and m01 of the points as an image weighted by `weight` (as
+    `cv2.moments` gives them, summed in double precision as `centred` sums them), which
+    give the total weight and the means without summing over the points again. The
+    centred moments are still summed over the points: OpenCV forms its central moments
+    from raw sums, which loses digits that the faint curvature of a nearly straight band
+    lives in.
+    """
+    total = known["m00"]
+    mean_x, mean_y = known["m10"] / total, known["m01"] / total
+    terms = np.empty((3, x.size))
+    np.subtract(x, mean_x, out=terms[0])
+    np.subtract(y, mean_y, out=terms[1])
+    points = (mean_x, mean_y, total, terms)
+    return points, _centred_moments(points, weight)
+
+
 def taubin_circle(
     x: np.ndarray, y: np.ndarray, points: tuple[float, float, float, np.ndarray] | None = None
 ) -> tuple[float, float, float] | None:
@@ -239,7 +261,10 @@ def taubin_circle(
 
 
 def fit_line_and_circle(
-    x: np.ndarray, y: np.ndarray, weight: np.ndarray | None = None
+    x: np.ndarray,
+    y: np.ndarray,
+    weight: np.ndarray | None = None,
+    known: Mapping[str, float] | None = None,
 ) -> tuple[LineFit, CircleFit]:
     """Weighted total-least-squares line and Taubin circle from one pass of moments.
 
@@ -247,11 +272,16 @@ def fit_line_and_circle(
     ``einsum`` (no BLAS; see `dot`). The line is the weighted principal axis: for the
     taxels of a straight band weighted by their signal, the band's centre line, with
     `rms_m` its half-width over sqrt(3). The circle is Taubin's (see `circle_fit_algebraic`).
+    `known`: the weighted points' image moments m00, m10 and m01, when at hand (see
+    `_from_known`; with `weight`).
     """
     n = int(x.size)
-    points = centred(x, y, weight)
+    if known is None or weight is None:
+        points = centred(x, y, weight)
+        moments = _centred_moments(points, weight)
+    else:
+        points, moments = _from_known(x, y, weight, known)
     mean_x, mean_y, total, terms = points
-    moments = _centred_moments(points, weight)
     m_uu, m_vv, m_uv = moments[:3]
     angle = (0.5 * math.atan2(2 * m_uv, m_uu - m_vv)) % math.pi
     smallest = max((m_uu + m_vv) / 2 - math.hypot((m_uu - m_vv) / 2, m_uv), 0.0)

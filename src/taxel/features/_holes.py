@@ -102,12 +102,12 @@ def diameter_test(
         borderMode=cv2.BORDER_CONSTANT,
         borderValue=0,
     )
-    touched = touched != 0
-    crossed = touched[:, 1:] != touched[:, :-1]
+    # the mask holds 0 and 1: a crossing is where a sample differs from the next one
+    crossed = np.bitwise_xor(touched[:, 1:], touched[:, :-1])
     middle = steps.size // 2
     before = np.add.reduce(crossed[:, :middle], axis=1)
     after = np.add.reduce(crossed[:, middle:], axis=1)
-    return bool(np.count_nonzero((before == 2) & (after == 2) & ~touched[:, middle]))
+    return bool(np.count_nonzero((before == 2) & (after == 2) & (touched[:, middle] == 0)))
 
 
 def outline_contours(prepared: Prepared) -> tuple[np.ndarray, ...]:
@@ -128,7 +128,7 @@ def outline_taxels(
     if not contours:
         empty = np.zeros(0, np.intp)
         return empty, empty
-    points = np.concatenate(contours)[:, 0, :]
+    points = (contours[0] if len(contours) == 1 else np.concatenate(contours))[:, 0, :]
     return points[:, 0], points[:, 1]
 
 

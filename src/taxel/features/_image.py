@@ -56,6 +56,9 @@ _FILL_8 = 8 | (1 << 8)
 # MAD of a standard normal, and the noise gain of `x - mean of its 4 neighbours`.
 _MAD = 1.4826
 _LAPLACE_GAIN = math.sqrt(1.25)
+_LAPLACE_KERNEL = np.array([[0, -0.25, 0], [-0.25, 1, -0.25], [0, -0.25, 0]], np.float32)
+# Integer images of at most this many bits: their Laplacian residual is exact in float32.
+_EXACT_BITS = 16
 
 
 @dataclass(eq=False)
@@ -194,12 +197,17 @@ def _as_image(image: Any) -> np.ndarray:
     return image32
 
 
-def laplacian_residual(image: np.ndarray, step: int = 1) -> np.ndarray:
+def laplacian_residual(image: np.ndarray, step: int = 1, *, whole: bool = False) -> np.ndarray:
     """``x - mean(4 neighbours)`` on the image's interior, on every `step`-th row.
 
     Shape (len(range(1, rows - 1, step)), cols - 2): rows 1, 1 + step, ... of the image.
+    `whole`: the image holds integers of at most 16 bits; every partial sum is then an
+    exact multiple of 1/4 in float32, so one filter over every row, adding in its own
+    order, gives the same residual in a third of the time of the four sums on the rows.
     """
     end = image.shape[0] - 1
+    if whole:
+        return cv2.filter2D(image, -1, _LAPLACE_KERNEL)[1:end:step, 1:-1]
     around = image[0 : end - 1 : step, 1:-1] + image[2 : end + 1 : step, 1:-1]
     around += image[1:end:step, :-2]
     around += image[1:end:step, 2:]
@@ -297,11 +305,14 @@ def prepare(
     >>> prepared.n_regions, int(prepared.mask.sum())
     (1, 21)
     """
-    values = hexagonal_resampled(_as_image(image), sensor_or_pitch)
+    given = _as_image(image)
+    values = hexagonal_resampled(given, sensor_or_pitch)
     pitch = pitch_pair(sensor_or_pitch)
     smoothing = check_range("smoothing", smoothing, 0.0, 20.0)
     step = 2 if values.shape[0] > 64 and values.shape[1] > 64 else 1
-    residual = laplacian_residual(values, step)
+    dtype = np.asarray(image).dtype  # (a raw frame: small integers, as it was given)
+    whole = values is given and dtype.kind in "biu" and dtype.itemsize * 8 <= _EXACT_BITS
+    residual = laplacian_residual(values, step, whole=whole)
     raw_noise = _noise_sigma(residual) if noise is None else check_positive("noise", noise)
     cleaned = removes_defects(sensor_or_pitch, defects)
     if cleaned:
@@ -333,7 +344,7 @@ def prepare(
     # region (an island inside a hole is put at the top level too), the usual case, and
     # it is seeded by the peak itself; its outlines serve every later feature
     outlines, hierarchy = cv2.findContours(candidates, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
-    if len(outlines) == 1 or int(np.count_nonzero(hierarchy[0][:, 3] < 0)) == 1:
+    if len(outlines) == 1 or hierarchy[0][:, 3].tolist().count(-1) == 1:
         return Prepared(
             mask=candidates,
             labels=candidates,

@@ -72,15 +72,15 @@ def half_region(
 def band_fits(prepared: Prepared, main: np.ndarray) -> tuple[LineFit, CircleFit, float]:
     """Weighted centre line and circle of a band (taxel units), and its length [taxels]."""
     # the band's taxels in row-major order, as np.nonzero gives them, found in the
-    # contact's window (`main` is 0 outside it)
+    # contact's window (`main` is 0 outside it; whole rows, so x needs no shift)
     window = contact_window(prepared)
+    _, weighted = region_moments(prepared, main)  # the moments of the same weights
     main = main[window]
     x, y = cv2.findNonZero(main).reshape(-1, 2).T.astype(float, order="C")
-    x += window[1].start
     y += window[0].start
     weight = prepared.smooth[window][main.view(bool)] - np.float32(prepared.baseline)
     np.maximum(weight, 1e-12, out=weight)
-    line, circle = fit_line_and_circle(x, y, weight.astype(float))
+    line, circle = fit_line_and_circle(x, y, weight.astype(float), weighted)
     along = math.cos(line.angle_rad) * x
     along += math.sin(line.angle_rad) * y
     return line, circle, float(np.maximum.reduce(along) - np.minimum.reduce(along)) + 1.0

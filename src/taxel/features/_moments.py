@@ -7,6 +7,11 @@ moments of the whole image follow exactly from those of a crop holding the regio
 central moments are then formed from them with OpenCV's own formulas, in the same order,
 and come out bit for bit the same as OpenCV's on the whole image (which matters: their
 rounding depends on where the origin lies).
+
+The crop holds 0 and 1, so its plain moments are its binary moments: OpenCV's binary mode
+first converts the image, which doubles the cost, and its plain mode on 8-bit images forms
+the central moments its own way; so the raw moments are taken in plain mode and the
+central moments always formed here, as the binary mode forms them.
 """
 
 from __future__ import annotations
@@ -27,7 +32,7 @@ def binary_moments(crop: np.ndarray, row0: int = 0, col0: int = 0) -> dict[str, 
     Parameters
     ----------
     crop : numpy.ndarray (uint8), shape (rows, cols)
-        Nonzero on the region; the larger image is zero outside the crop.
+        1 on the region, 0 elsewhere; the larger image is zero outside the crop.
     row0, col0 : int
         Where the crop's first taxel sits in the larger image.
 
@@ -37,9 +42,7 @@ def binary_moments(crop: np.ndarray, row0: int = 0, col0: int = 0) -> dict[str, 
         m00, m10, m01, m20, m11, m02, mu20, mu11, mu02, as ``cv2.moments(image,
         binaryImage=True)`` of the larger image gives them, bit for bit.
     """
-    raw = cv2.moments(crop, binaryImage=True)
-    if row0 == 0 and col0 == 0:
-        return raw
+    raw = cv2.moments(crop)  # 0/1: the binary moments (see the module notes)
     # exact integer shifts of the origin: x -> x + col0, y -> y + row0
     n, sx, sy = int(raw["m00"]), int(raw["m10"]), int(raw["m01"])
     sxx, sxy, syy = int(raw["m20"]), int(raw["m11"]), int(raw["m02"])

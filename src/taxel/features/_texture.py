@@ -131,6 +131,58 @@ def _contact_residual(prepared: Prepared) -> np.ndarray:
     return residual[on_rows[: residual.shape[0], : residual.shape[1]].view(bool)]
 
 
+def _margin(noise: float, sigma: float, contrast: float) -> np.float32:
+    """How far a high point rises above its surroundings, for taxel noise `noise`."""
+    # white noise of sigma n leaves n / (2 sqrt(pi) sigma) after a Gaussian of sigma
+    smoothed = noise / (2.0 * math.sqrt(math.pi) * sigma)
+    return np.float32(max(_MAXIMUM_SIGMAS * smoothed, 1e-9 * contrast, 1e-30))
+
+
+def _maxima(
+    smooth: np.ndarray,
+    around: np.ndarray,
+    lowest: np.ndarray,
+    mask: np.ndarray,
+    margin: np.float32,
+) -> tuple[np.ndarray, np.ndarray | None]:
+    """The contact's maxima that rise `margin` above the square around them.
+
+    Returns them as an image (uint8) and as points (x, y), or None without any. `around`:
+    the largest of each taxel's 8 neighbours; `lowest`: the smallest value of the square.
+    """
+    peaks = (smooth >= around) & (smooth > lowest + margin)
+    peaks = peaks.view(np.uint8) & mask
+    points = cv2.findNonZero(peaks)
+    return peaks, None if points is None else points.reshape(-1, 2)
+
+
+def _ring_test(
+    padded: np.ndarray,
+    stride: int,
+    pad: int,
+    points: np.ndarray,
+    ring_offsets: np.ndarray,
+    margin: np.float32,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Which points stand `margin` above every point of their ring.
+
+    `padded`: the smoothed image padded by `pad` taxels on every side, flattened, its rows
+    `stride` long. Returns the points' flat indices into it (as a column), their heights,
+    and the test's answers.
+    """
+    centres = ((points[:, 1] + pad) * stride + (points[:, 0] + pad))[:, None]
+    heights = np.take(padded, centres[:, 0])
+    ring = np.take(padded, centres + ring_offsets)
+    return centres, heights, heights > np.maximum.reduce(ring, axis=1) + margin
+
+
+def _contact_noise(prepared: Prepared) -> float:
+    """Noise sigma of the taxels in the contact, from every 4th of their residuals (0 if none)."""
+    if prepared.residual is None:
+        return 0.0
+    return noise_from_residual(_contact_residual(prepared)[::4])
+
+
 def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[int, float]:
     """Number and mean height above the baseline of the contact's high points (internal).
 
@@ -152,42 +204,55 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     image, mask = prepared.image[r0:r1, c0:c1], prepared.mask[r0:r1, c0:c1]
     smooth = cv2.GaussianBlur(image, (reach, reach), sigma, borderType=cv2.BORDER_REFLECT)
     lowest = cv2.erode(smooth, _square(2 * math.ceil(radius) + 1))
-    raw_noise = prepared.raw_noise
-    if prepared.residual is not None:
-        raw_noise = max(raw_noise, noise_from_residual(_contact_residual(prepared)[::4]))
-    # white noise of sigma n leaves n / (2 sqrt(pi) sigma) after a Gaussian of sigma
-    noise = raw_noise / (2.0 * math.sqrt(math.pi) * sigma)
-    margin = np.float32(max(_MAXIMUM_SIGMAS * noise, 1e-9 * prepared.contrast, 1e-30))
-    np.add(lowest, margin, out=lowest)
     # the largest of the 8 neighbours: a maximum is >= it, and equal to it beside another
     around = cv2.dilate(smooth, _AROUND)
-    peaks = (smooth >= around) & (smooth > lowest)
-    peaks = peaks.view(np.uint8) & mask
-    points = cv2.findNonZero(peaks)
+    # the margin is set by the noise inside the contact where it exceeds the image's (a
+    # camera's shot noise): the image's alone gives the least margin, and when no maximum
+    # stands out by even that one, above its square and its ring, none is a high point and
+    # the contact's noise (a median over its taxels) is not needed. (Every maximum is
+    # tested, before a plateau is reduced to one taxel: a high point is one of them.) On a
+    # small array the median costs less than the second test it may need: taken first.
+    contact_noise = None
+    if prepared.mask.size <= WHOLE_IMAGE:
+        contact_noise = _contact_noise(prepared)
+    noise = prepared.raw_noise if contact_noise is None else max(contact_noise, prepared.raw_noise)
+    margin = _margin(noise, sigma, prepared.contrast)
+    peaks, points = _maxima(smooth, around, lowest, mask, margin)
     if points is None:
         return 0, 0.0
-    points = points.reshape(-1, 2)
-    point_rows, point_cols = points[:, 1], points[:, 0]
-    heights = smooth[point_rows, point_cols]
-    # a plateau of equal values is one maximum, not many: one taxel per connected plateau,
-    # the first in the order of the plateaus' labels; two maxima touch only where one
-    # equals a neighbour, so without such a tie each maximum is its own plateau
-    tied = points.shape[0] > 1 and np.count_nonzero(around[point_rows, point_cols] == heights)
-    if tied:
-        points = _first_of_each(points, cv2.connectedComponents(peaks)[1])
-        point_rows, point_cols = points[:, 1], points[:, 0]
-        heights = smooth[point_rows, point_cols]
     # the ring and the neighbours are read in a copy padded by replication, as clipping
     # each index to the image would, with one flat index per value
     pad, ring_offsets, near_offsets = _padded_offsets(
         radius, max(int(round(sigma)), 1), smooth.shape[1]
     )
     padded = cv2.copyMakeBorder(smooth, pad, pad, pad, pad, cv2.BORDER_REPLICATE).ravel()
-    centres = ((point_rows + pad) * (smooth.shape[1] + 2 * pad) + (point_cols + pad))[:, None]
-    ring = np.take(padded, centres + ring_offsets)
-    high = heights > np.maximum.reduce(ring, axis=1) + margin
+    stride = smooth.shape[1] + 2 * pad
+    centres, heights, high = _ring_test(padded, stride, pad, points, ring_offsets, margin)
     if not np.count_nonzero(high):
         return 0, 0.0
+    retest = False
+    if contact_noise is None:
+        contact_noise = _contact_noise(prepared)
+    if contact_noise > noise:
+        margin = _margin(contact_noise, sigma, prepared.contrast)
+        peaks, points = _maxima(smooth, around, lowest, mask, margin)
+        if points is None:
+            return 0, 0.0
+        retest = True
+    point_rows, point_cols = points[:, 1], points[:, 0]
+    # a plateau of equal values is one maximum, not many: one taxel per connected plateau,
+    # the first in the order of the plateaus' labels; two maxima touch only where one
+    # equals a neighbour, so without such a tie each maximum is its own plateau
+    tied = points.shape[0] > 1 and np.count_nonzero(
+        around[point_rows, point_cols] == smooth[point_rows, point_cols]
+    )
+    if tied:
+        points = _first_of_each(points, cv2.connectedComponents(peaks)[1])
+        point_rows, point_cols = points[:, 1], points[:, 0]
+    if tied or retest:
+        centres, heights, high = _ring_test(padded, stride, pad, points, ring_offsets, margin)
+        if not np.count_nonzero(high):
+            return 0, 0.0
     # principal curvatures by central differences one sigma each way, on the points that
     # stand above their ring
     heights = heights[high]
