@@ -122,6 +122,13 @@ def centred(
     else:
         total = float(np.add.reduce(weight))
         mean_x, mean_y = dot(weight, x) / total, dot(weight, y) / total
+    return _about(x, y, mean_x, mean_y, total)
+
+
+def _about(
+    x: np.ndarray, y: np.ndarray, mean_x: float, mean_y: float, total: float
+) -> tuple[float, float, float, np.ndarray]:
+    """The points about their means, as `centred` returns them (internal)."""
     terms = np.empty((3, x.size))
     np.subtract(x, mean_x, out=terms[0])
     np.subtract(y, mean_y, out=terms[1])
@@ -236,11 +243,7 @@ def _from_known(
     lives in.
     """
     total = known["m00"]
-    mean_x, mean_y = known["m10"] / total, known["m01"] / total
-    terms = np.empty((3, x.size))
-    np.subtract(x, mean_x, out=terms[0])
-    np.subtract(y, mean_y, out=terms[1])
-    points = (mean_x, mean_y, total, terms)
+    points = _about(x, y, known["m10"] / total, known["m01"] / total, total)
     return points, _centred_moments(points, weight)
 
 
