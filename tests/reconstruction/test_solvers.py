@@ -13,6 +13,7 @@ from taxel.reconstruction import (
     naive_inverse,
     reconstruct,
 )
+from taxel.reconstruction._choice import _parabola_vertices
 
 SMALL = forward_model_preset("resistive16", shape=(10, 10))
 # vhdta128's ratio of depth to pitch (3.9) on a small grid: badly conditioned
@@ -245,6 +246,27 @@ def test_batches_are_solved_frame_by_frame():
     single = solver.solve(frames[1, 2])
     assert single.regularization == pytest.approx(batch.regularization[1, 2])
     assert np.allclose(single.pressure, batch.pressure[1, 2])
+
+
+@pytest.mark.parametrize("rule", ["gcv", "lcurve", "discrepancy"])
+def test_each_rule_chooses_the_same_lambda_in_a_batch_as_frame_by_frame(rule):
+    solver = TikhonovSolver(SMALL, order=1)
+    rng = np.random.default_rng(8)
+    frames = solver.operator.apply(rng.random((12, *SMALL.shape)) * 1e4)
+    frames += rng.normal(0, 300, frames.shape)
+    batch = solver.solve(frames, regularization=rule)
+    single = [float(solver.solve(frame, regularization=rule).regularization) for frame in frames]
+    assert np.allclose(batch.regularization, single, rtol=1e-12)
+
+
+def test_the_grid_minimum_is_refined_to_the_parabola_vertex():
+    x = np.linspace(-2.0, 2.0, 41)
+    vertices = np.array([0.013, -1.37, 1.91, 2.0])
+    y = (x[None, :] - vertices[:, None]) ** 2
+    y[3] = 5.0  # a constant row: its minimum is the grid's first point, an end
+    found = _parabola_vertices(x, y, np.argmin(y, axis=1))
+    assert found[:2] == pytest.approx(vertices[:2], abs=1e-12)
+    assert found[2:] == pytest.approx([1.91, -2.0], abs=1e-12)
 
 
 @pytest.mark.parametrize(

@@ -116,16 +116,21 @@ def lcurve_curvature(
     return np.nan_to_num(kappa, nan=0.0, posinf=0.0, neginf=0.0)
 
 
-def _parabola_vertex(x: np.ndarray, y: np.ndarray, index: int) -> float:
-    """Vertex of the parabola through three grid points around `index` (x uniform)."""
-    if index <= 0 or index >= x.size - 1:
-        return float(x[index])
-    left, centre, right = y[index - 1], y[index], y[index + 1]
-    denominator = left - 2 * centre + right
-    if denominator == 0 or not np.isfinite(denominator):
-        return float(x[index])
-    shift = 0.5 * (left - right) / denominator
-    return float(x[index] + np.clip(shift, -1, 1) * (x[1] - x[0]))
+def _parabola_vertices(x: np.ndarray, y: np.ndarray, index: np.ndarray) -> np.ndarray:
+    """Vertex of the parabola through three grid points around each row's `index` (B,).
+
+    x is uniform (n,), y holds one row per frame (B, n); at the grid's ends, or where the
+    three points are collinear or not finite, the grid point itself.
+    """
+    rows = np.arange(y.shape[0])
+    inner = np.clip(index, 1, x.size - 2)
+    left, centre, right = y[rows, inner - 1], y[rows, inner], y[rows, inner + 1]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        denominator = left - 2 * centre + right
+        shift = 0.5 * (left - right) / denominator
+    usable = (index == inner) & (denominator != 0) & np.isfinite(denominator)
+    step = np.where(usable, np.clip(np.where(usable, shift, 0.0), -1, 1), 0.0)
+    return x[index] + step * (x[1] - x[0])
 
 
 class ParameterScan:
@@ -233,27 +238,24 @@ class ParameterScan:
 
     def choose(self, rule: str, curve: ParameterCurve, noise: np.ndarray | None) -> np.ndarray:
         """The lambda of each frame (B,) by the rule; `noise`: reading noise std per frame."""
-        frames = curve.residual_norm.shape[0]
         if rule == "discrepancy":
             assert noise is not None
             # no noise at all (an all-zero frame): the smallest lambda on the grid
             target = np.log(np.maximum(np.asarray(noise) * np.sqrt(self.count), 1e-300))
             values = np.log(np.maximum(curve.residual_norm, 1e-300))
             return 10 ** _crossings(self.log_grid, values, target)
-        logs = np.empty(frames)
-        for index in range(frames):
-            if rule == "gcv":
-                values = np.log(curve.gcv[index])
-                logs[index] = _parabola_vertex(self.log_grid, values, int(np.argmin(values)))
-            elif rule == "lcurve":
-                values = curve.curvature[index].copy()
-                values[[0, -1]] = -np.inf  # a corner is interior
-                # well below the smallest mode's transition the curve collapses to a point: its
-                # curvature there is rounding noise, not a corner
-                values[: self._first_meaningful] = -np.inf
-                logs[index] = _parabola_vertex(self.log_grid, values, int(np.argmax(values)))
-            else:
-                raise ValueError(f"unknown rule {rule!r}")
+        if rule == "gcv":
+            values = np.log(curve.gcv)
+            logs = _parabola_vertices(self.log_grid, values, np.argmin(values, axis=1))
+        elif rule == "lcurve":
+            values = curve.curvature.copy()
+            values[:, [0, -1]] = -np.inf  # a corner is interior
+            # well below the smallest mode's transition the curve collapses to a point: its
+            # curvature there is rounding noise, not a corner
+            values[:, : self._first_meaningful] = -np.inf
+            logs = _parabola_vertices(self.log_grid, values, np.argmax(values, axis=1))
+        else:
+            raise ValueError(f"unknown rule {rule!r}")
         return 10**logs
 
 

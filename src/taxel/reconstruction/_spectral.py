@@ -260,6 +260,9 @@ class DenseSpectrum(Spectrum):
             # y -> y + (mean) a, with a fitting what A y leaves of b along A 1
             expansion -= self._free_basis @ (self._image_of_mean.T @ (matrix @ expansion))
         self._vectors, self._expansion = vectors, expansion
+        # the expansion and the free direction side by side: one product synthesizes both
+        self._synthesis = np.ascontiguousarray(np.hstack([expansion, self._free_basis]).T)
+        self._all_live = bool(self._live.all())
         self.g = singular**2 / self.scale
         self._factor_cache: dict[tuple[float, float], tuple] = {}
 
@@ -272,7 +275,8 @@ class DenseSpectrum(Spectrum):
 
     def live(self, frames: np.ndarray) -> np.ndarray:
         """The live readings of frames (B, rows, cols) as (B, count)."""
-        return frames.reshape(frames.shape[0], -1)[:, self._live]
+        flat = frames.reshape(frames.shape[0], -1)
+        return flat if self._all_live else flat[:, self._live]
 
     def analyze(self, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         data = self.live(frames)
@@ -285,7 +289,8 @@ class DenseSpectrum(Spectrum):
         return beta, free, np.maximum(rest, 0.0)
 
     def synthesize(self, filtered: np.ndarray, free: np.ndarray) -> np.ndarray:
-        flat = filtered @ self._expansion.T + free @ self._free_basis.T
+        coefficients = np.concatenate([filtered, free], axis=1) if self.n_free else filtered
+        flat = coefficients @ self._synthesis
         return flat.reshape(filtered.shape[0], *self.load_shape)
 
     def cell_variance(self, factors: np.ndarray) -> np.ndarray:
