@@ -16,6 +16,7 @@ def test_public_names():
         "read_fabricslide",
         "read_frame",
         "read_sequence",
+        "write_files",
         "write_frame",
         "write_text",
     ]

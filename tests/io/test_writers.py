@@ -3,7 +3,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from taxel.io import check_new_file, read_frame, write_frame, write_text
+from taxel.io import check_new_file, read_frame, write_files, write_frame, write_text
 
 
 def test_write_frame_round_trip_and_refuses_to_overwrite(tmp_path):
@@ -43,3 +43,20 @@ def test_a_failed_write_names_the_file_asked_for():
     with pytest.raises(OSError, match=r"'/proc/frame.npy'") as error:
         write_frame("/proc/frame.npy", np.zeros((2, 2)))
     assert ".partial" not in str(error.value)
+
+
+def test_several_files_are_written_all_or_none(tmp_path):
+    first, second = tmp_path / "a.txt", tmp_path / "b.txt"
+    second.write_text("kept")
+
+    def fail(temporary: Path) -> None:
+        temporary.write_text("half")
+        raise OSError(28, "No space left on device")
+
+    with pytest.raises(OSError, match="b.txt"):
+        write_files([(first, lambda t: t.write_text("new")), (second, fail)])
+    assert not first.exists()  # the first write succeeded, but was never renamed
+    assert second.read_text() == "kept"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["b.txt"]  # no temporaries left
+    write_files([(first, lambda t: t.write_text("1")), (second, lambda t: t.write_text("2"))])
+    assert (first.read_text(), second.read_text()) == ("1", "2")

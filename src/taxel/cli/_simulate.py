@@ -11,7 +11,6 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
-import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -21,7 +20,7 @@ import numpy as np
 
 from taxel.cli._arguments import finite, integer_in, positive, preset, seed
 from taxel.cli._main import CommandLineError
-from taxel.io import check_new_file
+from taxel.io import check_new_file, write_files
 
 __all__ = ["register"]
 
@@ -62,26 +61,26 @@ def _write_both(
     out: Path, raw: np.ndarray, truth: Path | None, arrays: dict[str, Any] | None
 ) -> None:
     """Write the frame and its truth: both, or (when either write fails) neither."""
-    jobs: list[tuple[str, Path, Callable[[Any], None]]] = [
-        ("--out", out, lambda stream: np.save(stream, raw, allow_pickle=False))
+    jobs: list[tuple[Path, Callable[[Path], Any]]] = [
+        (out, lambda temporary: _save(temporary, np.save, raw, allow_pickle=False))
     ]
+    options = {out: "--out"}
     if truth is not None and arrays is not None:
-        jobs.append(("--truth", truth, lambda stream: np.savez_compressed(stream, **arrays)))
-    partials = [target.with_name(f".{target.name}.partial") for _, target, _ in jobs]
+        jobs.append((truth, lambda temporary: _save(temporary, np.savez_compressed, **arrays)))
+        options[truth] = "--truth"
     try:
-        for (option, target, write), partial in zip(jobs, partials, strict=True):
-            try:
-                with open(partial, "wb") as stream:
-                    write(stream)
-            except OSError as error:
-                raise CommandLineError(
-                    f"{option} {target} cannot be written ({error.strerror or error})"
-                ) from None
-        for (_, target, _), partial in zip(jobs, partials, strict=True):
-            os.replace(partial, target)
-    finally:
-        for partial in partials:
-            partial.unlink(missing_ok=True)
+        write_files(jobs)
+    except OSError as error:
+        target = Path(str(error.filename))
+        raise CommandLineError(
+            f"{options[target]} {target} cannot be written ({error.strerror or error})"
+        ) from None
+
+
+def _save(path: Path, save: Callable[..., None], *args: Any, **kwargs: Any) -> None:
+    """`save` (np.save or np.savez_compressed) to an open file, so no suffix is added."""
+    with open(path, "wb") as stream:
+        save(stream, *args, **kwargs)
 
 
 def _check_lowest_point_on_sensor(

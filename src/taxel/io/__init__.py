@@ -10,7 +10,7 @@ read_frame, read_sequence, TactileSequence
 
 Writing (never over an existing file unless asked; never over an input)
 -------------------------------------------------------------------------
-write_frame, write_text, check_new_file
+write_frame, write_text, write_files (several files, all or none), check_new_file
 
 FabricSlide recordings (capacitive finger sliding over fabrics)
 ---------------------------------------------------------------
@@ -27,7 +27,7 @@ from taxel.io._fabricslide import (
     read_fabricslide,
 )
 from taxel.io._frames import TactileSequence, read_frame, read_sequence
-from taxel.io._writers import check_new_file, write_frame, write_text
+from taxel.io._writers import check_new_file, write_files, write_frame, write_text
 
 __all__ = [
     "CPM_FINGER",
@@ -41,6 +41,7 @@ __all__ = [
     "read_fabricslide",
     "read_frame",
     "read_sequence",
+    "write_files",
     "write_frame",
     "write_text",
 ]

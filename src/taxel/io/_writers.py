@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["check_new_file", "write_frame", "write_text"]
+__all__ = ["check_new_file", "write_files", "write_frame", "write_text"]
 
 
 def check_new_file(
@@ -56,18 +56,42 @@ def check_new_file(
     return target
 
 
+def _partial(target: Path) -> Path:
+    """The temporary file beside `target` that is renamed to it once complete."""
+    return target.with_name(f".{target.name}.partial")
+
+
 def _atomic(target: Path, write: Callable[[Path], Any]) -> Path:
     """Write to a temporary file beside `target`, then rename: no half-written files."""
-    temporary = target.with_name(f".{target.name}.partial")
-    try:
-        write(temporary)
-        os.replace(temporary, target)
-    except OSError as error:  # named by the file asked for, not the temporary one
-        raise OSError(error.errno, error.strerror, str(target)) from None
-    finally:
-        if temporary.exists():
-            temporary.unlink()
+    write_files([(target, write)])
     return target
+
+
+def write_files(jobs: list[tuple[Path, Callable[[Path], Any]]]) -> None:
+    """Write several files all or none: each to a temporary file beside it, then rename.
+
+    Each job is (target, write), where ``write(temporary)`` writes the content to the path
+    it is given. The renames start only once every write has succeeded; when one fails, no
+    target is touched and every temporary file is removed.
+
+    Raises
+    ------
+    OSError
+        From the first write or rename that fails, with the target's name (not the
+        temporary one's) as its filename.
+    """
+    temporaries = [_partial(target) for target, _ in jobs]
+    step = 0
+    try:
+        for step, (_, write) in enumerate(jobs):
+            write(temporaries[step])
+        for step, (target, _) in enumerate(jobs):
+            os.replace(temporaries[step], target)
+    except OSError as error:  # named by the file asked for, not the temporary one
+        raise OSError(error.errno, error.strerror, str(jobs[step][0])) from None
+    finally:
+        for temporary in temporaries:
+            temporary.unlink(missing_ok=True)
 
 
 def write_frame(
