@@ -129,7 +129,7 @@ def _parabola_vertices(x: np.ndarray, y: np.ndarray, index: np.ndarray) -> np.nd
         denominator = left - 2 * centre + right
         shift = 0.5 * (left - right) / denominator
     usable = (index == inner) & (denominator != 0) & np.isfinite(denominator)
-    step = np.where(usable, np.clip(np.where(usable, shift, 0.0), -1, 1), 0.0)
+    step = np.clip(np.where(usable, shift, 0.0), -1, 1)
     return x[index] + step * (x[1] - x[0])
 
 
