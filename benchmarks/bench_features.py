@@ -257,7 +257,6 @@ def evaluate(frames: list, sensor) -> list[dict]:
         shape = features.shape
         row = {
             "frame": frame,
-            "sensor": sensor,
             "indenter": frame.indenter,
             "truth": frame.contact_type,
             "type": features.contact_type,
@@ -410,12 +409,12 @@ def score(rows: list[dict], name: str) -> list[str]:
         _stats_row("3-D position error", [r["position"] for r in rows], "mm", 0.5, judge, 1e3),
         "",
         *_per_indenter(rows),
-        *_response_note(rows),
+        *_response_note(rows, features_scenes.benchmark_sensor(name)),
     ]
     return lines
 
 
-def _response_note(rows: list[dict]) -> list[str]:
+def _response_note(rows: list[dict], sensor) -> list[str]:
     """What the reference centroid row shows (only for a sensor that reads pressure back)."""
     pairs = [
         (r["centroid"], r["response_centroid"])
@@ -426,7 +425,7 @@ def _response_note(rows: list[dict]) -> list[str]:
         return []
     features, response = np.array(pairs).T
     frame = rows[0]["frame"].raw.astype(float)
-    transducer = rows[0]["sensor"].transducer
+    transducer = sensor.transducer
     times = []
     for _ in range(21):
         start = CLOCK()
