@@ -23,12 +23,15 @@ def _frame(solver, truth, sigma, seed):
 @pytest.mark.parametrize("spec", [THICK, THIN], ids=["thick", "thin"])
 def test_pure_noise_gives_its_std(spec):
     solver = TikhonovSolver(spec)
-    frames = np.random.default_rng(0).normal(0.0, 1e3, (20, *spec.shape))
+    frames = np.random.default_rng(0).normal(0.0, 1e3, (400, *spec.shape))
     estimates = solver.estimate_noise_level(frames)
-    assert estimates.shape == (20,)
+    assert estimates.shape == (400,)
     # each estimate is a median: a few % off, and the minimum of two leans low by about 2 %
     assert np.median(estimates) == pytest.approx(1e3, rel=0.05)
-    assert np.all(np.abs(estimates / 1e3 - 1) < 0.2)
+    # the thin 16 x 16 array has only 127 least-passed modes and 225 differences: its
+    # estimates spread by about 9 %, and 3.3 % of frames fall more than 20 % off (measured
+    # on 4000 frames); the thick cover's none
+    assert np.mean(np.abs(estimates / 1e3 - 1) > 0.2) <= 0.06
 
 
 def test_a_sharp_load_on_a_thin_cover_fools_the_spectral_estimate_but_not_the_combined():

@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import fft, linalg
 
+from taxel.reconstruction._mirror import mirror_blocks
 from taxel.reconstruction._model import dense_penalty, fold_1d, penalty_eigenvalues
 from taxel.reconstruction._operator import SensorOperator
 
@@ -216,7 +217,12 @@ class FastSpectrum(Spectrum):
 
 
 class DenseSpectrum(Spectrum):
-    """Eigen-factorization of a dense operator (any boundary model; dead taxels removed)."""
+    """Eigen-factorization of a dense operator (any boundary model; dead taxels removed).
+
+    An array with every taxel live, even sizes and a mirror-symmetric operator (the
+    presets) is factorized and applied in its four mirror parts (module `_mirror`): the
+    same modes, found and applied in a quarter of the dense products.
+    """
 
     def __init__(self, operator: SensorOperator, order: int) -> None:
         spec = operator.spec
@@ -251,8 +257,14 @@ class DenseSpectrum(Spectrum):
         # standard form K = A~ M^(+1/2): its SVD keeps relative accuracy in sqrt(g), where an
         # eigen-decomposition of A~ M^+ A~^T would lose the small g below eps * g_max
         standard = self._penalty_power(reduced.T, -0.5).T if order else reduced
-        vectors, singular, right = np.linalg.svd(standard, full_matrices=False)
-        keep = singular > singular[0] * max(standard.shape) * np.finfo(float).eps
+        self._all_live = bool(self._live.all())
+        split = mirror_blocks(standard, spec.shape, self.load_shape) if self._all_live else None
+        if split is None:
+            vectors, singular, right = np.linalg.svd(standard, full_matrices=False)
+            self._mirror = None
+        else:
+            vectors, singular, right, self._mirror = split
+        keep = singular > singular.max() * max(standard.shape) * np.finfo(float).eps
         singular, vectors, right = singular[keep], vectors[:, keep], right[keep]
         expansion = right.T / singular
         if order:
@@ -262,7 +274,9 @@ class DenseSpectrum(Spectrum):
         self._vectors, self._expansion = vectors, expansion
         # the expansion and the free direction side by side: one product synthesizes both
         self._synthesis = np.ascontiguousarray(np.hstack([expansion, self._free_basis]).T)
-        self._all_live = bool(self._live.all())
+        if self._mirror is not None:
+            self._mirror.keep(keep)
+            self._mirror.prepare(vectors, self._synthesis, self._image_of_mean, self.load_shape)
         self.g = singular**2 / self.scale
         self._factor_cache: dict[tuple[float, float], tuple] = {}
 
@@ -280,8 +294,10 @@ class DenseSpectrum(Spectrum):
 
     def analyze(self, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         data = self.live(frames)
-        beta = data @ self._vectors
-        free = data @ self._image_of_mean
+        if self._mirror is None:
+            beta, free = data @ self._vectors, data @ self._image_of_mean
+        else:
+            beta, free = self._mirror.analyze(frames)
         if beta.shape[1] + self.n_free >= self.count:  # the modes span every reading
             return beta, free, np.zeros(data.shape[0])
         rest = np.einsum("ij,ij->i", data, data) - np.einsum("ij,ij->i", beta, beta)
@@ -289,6 +305,8 @@ class DenseSpectrum(Spectrum):
         return beta, free, np.maximum(rest, 0.0)
 
     def synthesize(self, filtered: np.ndarray, free: np.ndarray) -> np.ndarray:
+        if self._mirror is not None:
+            return self._mirror.synthesize(filtered, free)
         coefficients = np.concatenate([filtered, free], axis=1) if self.n_free else filtered
         flat = coefficients @ self._synthesis
         return flat.reshape(filtered.shape[0], *self.load_shape)
