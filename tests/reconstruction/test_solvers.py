@@ -1,5 +1,7 @@
 """Solvers: exact recovery, dense/fast agreement, parameter rules, constraints, bad input."""
 
+import pickle
+
 import numpy as np
 import pytest
 
@@ -257,6 +259,34 @@ def test_each_rule_chooses_the_same_lambda_in_a_batch_as_frame_by_frame(rule):
     batch = solver.solve(frames, regularization=rule)
     single = [float(solver.solve(frame, regularization=rule).regularization) for frame in frames]
     assert np.allclose(batch.regularization, single, rtol=1e-12)
+
+
+def test_a_batch_carries_every_frames_curves_and_the_lcurve_rule_takes_their_corner():
+    solver = TikhonovSolver(SMALL, order=1)
+    rng = np.random.default_rng(4)
+    frames = solver.operator.apply(rng.random((12, *SMALL.shape)) * 1e4)
+    frames += rng.normal(0, 300, frames.shape)
+    curve = solver.solve(frames, regularization="gcv").curve
+    assert curve.solution_norm.shape == curve.curvature.shape == (12, curve.regularization.size)
+    for index in (0, 11):
+        single = solver.solve(frames[index], regularization="gcv").curve
+        assert np.allclose(single.solution_norm, curve.solution_norm[index], rtol=1e-12)
+        assert np.allclose(single.curvature, curve.curvature[index], rtol=1e-9, atol=1e-12)
+        assert np.allclose(curve.frame(index).curvature, curve.curvature[index])
+    # |L x| at each grid lambda is the seminorm of the solution at that lambda
+    lam = curve.regularization[60]
+    solved = solver.solve(frames[3], regularization=float(lam))
+    assert curve.solution_norm[3, 60] == pytest.approx(solved.solution_norm, rel=1e-9)
+    # the L-curve rule's lambda lies within a grid step of the sampled curvature's maximum
+    # (interior, and above the grid's start, where the collapsed curve's curvature is noise)
+    chosen = solver.solve(frames[3], regularization="lcurve").regularization
+    first = max(solver.scan._first_meaningful, 1)
+    peak = np.argmax(curve.curvature[3, first:-1]) + first
+    step = np.diff(np.log10(curve.regularization))[0]
+    assert abs(np.log10(chosen) - np.log10(curve.regularization[peak])) <= step
+    # results with their curves can be pickled (worker processes, caches)
+    restored = pickle.loads(pickle.dumps(solver.solve(frames[3], regularization="gcv")))
+    assert np.allclose(restored.curve.curvature, curve.curvature[3], rtol=1e-9, atol=1e-12)
 
 
 def test_the_grid_minimum_is_refined_to_the_parabola_vertex():

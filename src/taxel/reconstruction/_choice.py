@@ -10,7 +10,9 @@ modes the beta_i^2 are summed in bins of g 1/100 decade wide (g varies by 2.3 % 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -31,29 +33,63 @@ class ParameterCurve:
         The lambda grid (relative units, see `TikhonovSolver`).
     residual_norm : numpy.ndarray, shape (..., n)
         |A x - b| over the live taxels, in reading units.
-    solution_norm : numpy.ndarray, shape (..., n)
-        |L x|, the penalty seminorm [Pa per cell^order].
     gcv : numpy.ndarray, shape (..., n)
         The GCV function m |r|^2 / (m - trace)^2.
+    solution_norm : numpy.ndarray, shape (..., n)
+        |L x|, the penalty seminorm [Pa per cell^order] (computed when first read).
     curvature : numpy.ndarray, shape (..., n)
-        Curvature of the L-curve (log |r|, log |L x|); the corner is its maximum.
+        Curvature of the L-curve (log |r|, log |L x|); the corner is its maximum (computed
+        when first read).
     """
 
     regularization: np.ndarray = field(repr=False)
     residual_norm: np.ndarray = field(repr=False)
-    solution_norm: np.ndarray = field(repr=False)
     gcv: np.ndarray = field(repr=False)
-    curvature: np.ndarray = field(repr=False)
+    # () -> (solution_norm, curvature): only plots and the L-curve rule need them
+    lcurve: Callable[[], tuple[np.ndarray, np.ndarray]] = field(repr=False, compare=False)
+
+    @cached_property
+    def _lcurve_values(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.lcurve()
+
+    @property
+    def solution_norm(self) -> np.ndarray:
+        """|L x| on the grid, shape (..., n)."""
+        return self._lcurve_values[0]
+
+    @property
+    def curvature(self) -> np.ndarray:
+        """Curvature of the L-curve on the grid, shape (..., n)."""
+        return self._lcurve_values[1]
 
     def frame(self, index: int) -> ParameterCurve:
         """The curves of one frame of a batch."""
         return ParameterCurve(
             self.regularization,
             self.residual_norm[index],
-            self.solution_norm[index],
             self.gcv[index],
-            self.curvature[index],
+            _FrameOf(self, index),
         )
+
+
+class _FrameOf:
+    """One frame's L-curve, taken from its batch's when first asked for."""
+
+    def __init__(self, batch: ParameterCurve, index: int) -> None:
+        self.batch, self.index = batch, index
+
+    def __call__(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.batch.solution_norm[self.index], self.batch.curvature[self.index]
+
+
+class _LCurve:
+    """The seminorm and L-curve curvature of frames, computed when first asked for."""
+
+    def __init__(self, scan: ParameterScan, data: np.ndarray, residual: np.ndarray) -> None:
+        self.scan, self.data, self.residual = scan, data, residual
+
+    def __call__(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.scan.lcurve(self.data, self.residual)
 
 
 def lcurve_curvature(
@@ -200,24 +236,22 @@ class ParameterScan:
         assert self._starts is not None  # set together with _order
         return np.add.reduceat(beta2[:, self._order], self._starts, axis=1)
 
-    def curves(self, beta2: np.ndarray, rest: np.ndarray, *, full: bool = True) -> ParameterCurve:
+    def curves(self, beta2: np.ndarray, rest: np.ndarray) -> ParameterCurve:
         """Curves for frames with squared coefficients beta2 (B, r) and unreachable rest.
 
-        With ``full=False`` only the residual and GCV are computed (the L-curve is NaN),
-        which is what GCV and the discrepancy principle need for a large batch.
+        The residual and GCV are computed here, which is all that GCV and the discrepancy
+        principle need; the seminorm and the L-curve's curvature when first read.
         """
         data = self._compress(beta2).T
         residual = (self._residual_weight @ data).T + rest[:, None]
-        if not full:
-            with np.errstate(divide="ignore", invalid="ignore"):
-                gcv = self.count * residual / (self.count - self.trace) ** 2
-            gcv = np.where(self.count - self.trace > 0.5, gcv, np.inf)
-            missing = np.full_like(residual, np.nan)
-            return ParameterCurve(self.grid, np.sqrt(residual), missing, gcv, missing)
-        seminorm = (self._seminorm_weight @ data).T
         with np.errstate(divide="ignore", invalid="ignore"):
             gcv = self.count * residual / (self.count - self.trace) ** 2
         gcv = np.where(self.count - self.trace > 0.5, gcv, np.inf)
+        return ParameterCurve(self.grid, np.sqrt(residual), gcv, _LCurve(self, data, residual))
+
+    def lcurve(self, data: np.ndarray, residual: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """|L x| and the L-curve's curvature (B, n) from compressed beta^2 (bins, B)."""
+        seminorm = (self._seminorm_weight @ data).T
         if self.truncated:  # no derivative: curvature of the sampled curve
             x = 0.5 * np.log(np.maximum(residual, 1e-300))
             y = 0.5 * np.log(np.maximum(seminorm, 1e-300))
@@ -228,13 +262,7 @@ class ParameterScan:
         else:
             derivative = (self._derivative_weight @ data).T
             curvature = lcurve_curvature(self.grid, residual, seminorm, derivative)
-        return ParameterCurve(
-            self.grid,
-            np.sqrt(residual),
-            np.sqrt(seminorm / self.scale),
-            gcv,
-            curvature,
-        )
+        return np.sqrt(seminorm / self.scale), curvature
 
     def choose(self, rule: str, curve: ParameterCurve, noise: np.ndarray | None) -> np.ndarray:
         """The lambda of each frame (B,) by the rule; `noise`: reading noise std per frame."""

@@ -253,8 +253,7 @@ class TikhonovSolver:
         if rule == "given":
             lam = np.full(frames.shape[0], value)
         else:
-            full = rule == "lcurve" or frames.shape[0] <= 8  # batches: what the rule needs
-            curve = self.scan.curves(beta**2, rest, full=full)
+            curve = self.scan.curves(beta**2, rest)
             if rule == "discrepancy":
                 if noise_level is None:
                     noise = self._noise(frames, beta)
