@@ -5,6 +5,7 @@ import pickle
 import numpy as np
 import pytest
 
+import taxel.reconstruction._tikhonov as tikhonov
 from taxel.mechanics import make_indenter, solve_contact
 from taxel.reconstruction import (
     ADMMSolver,
@@ -261,14 +262,31 @@ def test_each_rule_chooses_the_same_lambda_in_a_batch_as_frame_by_frame(rule):
     assert np.allclose(batch.regularization, single, rtol=1e-12)
 
 
-def test_a_batch_carries_every_frames_curves_and_the_lcurve_rule_takes_their_corner():
+@pytest.mark.parametrize("rule", ["gcv", "lcurve", "discrepancy", 0.05])
+def test_a_batch_solved_in_chunks_equals_the_whole(monkeypatch, rule):
+    solver = TikhonovSolver(SMALL, order=1)
+    rng = np.random.default_rng(5)
+    frames = solver.operator.apply(rng.random((7, *SMALL.shape)) * 1e4)
+    frames += rng.normal(0, 300, frames.shape)
+    whole = solver.solve(frames, regularization=rule)
+    monkeypatch.setattr(tikhonov, "_CHUNK_BYTES", 3 * 8 * frames[0].size)  # 3, 3 and 1
+    chunked = solver.solve(frames, regularization=rule)
+    assert np.allclose(chunked.pressure, whole.pressure, rtol=1e-12, atol=1e-9)
+    for name in ("regularization", "residual_norm", "solution_norm"):
+        assert np.allclose(getattr(chunked, name), getattr(whole, name), rtol=1e-12)
+    if rule != 0.05:
+        assert np.allclose(chunked.curve.gcv, whole.curve.gcv, rtol=1e-12)
+        assert np.allclose(chunked.curve.curvature, whole.curve.curvature, rtol=1e-9, atol=1e-12)
+
+
+def test_a_few_frames_carry_their_curves_and_the_lcurve_rule_takes_their_corner():
     solver = TikhonovSolver(SMALL, order=1)
     rng = np.random.default_rng(4)
-    frames = solver.operator.apply(rng.random((12, *SMALL.shape)) * 1e4)
+    frames = solver.operator.apply(rng.random((6, *SMALL.shape)) * 1e4)
     frames += rng.normal(0, 300, frames.shape)
     curve = solver.solve(frames, regularization="gcv").curve
-    assert curve.solution_norm.shape == curve.curvature.shape == (12, curve.regularization.size)
-    for index in (0, 11):
+    assert curve.solution_norm.shape == curve.curvature.shape == (6, curve.regularization.size)
+    for index in (0, 5):
         single = solver.solve(frames[index], regularization="gcv").curve
         assert np.allclose(single.solution_norm, curve.solution_norm[index], rtol=1e-12)
         assert np.allclose(single.curvature, curve.curvature[index], rtol=1e-9, atol=1e-12)

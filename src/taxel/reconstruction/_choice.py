@@ -36,7 +36,8 @@ class ParameterCurve:
     gcv : numpy.ndarray, shape (..., n)
         The GCV function m |r|^2 / (m - trace)^2.
     solution_norm : numpy.ndarray, shape (..., n)
-        |L x|, the penalty seminorm [Pa per cell^order] (computed when first read).
+        |L x|, the penalty seminorm [Pa per cell^order] (computed when first read; NaN for
+        a batch of more than 8 frames, unless its rule was the L-curve).
     curvature : numpy.ndarray, shape (..., n)
         Curvature of the L-curve (log |r|, log |L x|); the corner is its maximum (computed
         when first read).
@@ -72,6 +73,29 @@ class ParameterCurve:
         )
 
 
+def join_curves(curves: list[ParameterCurve]) -> ParameterCurve:
+    """The curves of consecutive parts of a batch as one batch's."""
+    return ParameterCurve(
+        curves[0].regularization,
+        np.concatenate([c.residual_norm for c in curves]),
+        np.concatenate([c.gcv for c in curves]),
+        _Joined(curves),
+    )
+
+
+class _Joined:
+    """The L-curves of consecutive parts of a batch, joined when first asked for."""
+
+    def __init__(self, curves: list[ParameterCurve]) -> None:
+        self.curves = curves
+
+    def __call__(self) -> tuple[np.ndarray, np.ndarray]:
+        return (
+            np.concatenate([c.solution_norm for c in self.curves]),
+            np.concatenate([c.curvature for c in self.curves]),
+        )
+
+
 class _FrameOf:
     """One frame's L-curve, taken from its batch's when first asked for."""
 
@@ -80,6 +104,16 @@ class _FrameOf:
 
     def __call__(self) -> tuple[np.ndarray, np.ndarray]:
         return self.batch.solution_norm[self.index], self.batch.curvature[self.index]
+
+
+class _Missing:
+    """No L-curve (NaN), for batches that did not keep what it needs."""
+
+    def __init__(self, shape: tuple[int, ...]) -> None:
+        self.shape = shape
+
+    def __call__(self) -> tuple[np.ndarray, np.ndarray]:
+        return np.full(self.shape, np.nan), np.full(self.shape, np.nan)
 
 
 class _LCurve:
@@ -236,18 +270,23 @@ class ParameterScan:
         assert self._starts is not None  # set together with _order
         return np.add.reduceat(beta2[:, self._order], self._starts, axis=1)
 
-    def curves(self, beta2: np.ndarray, rest: np.ndarray) -> ParameterCurve:
+    def curves(
+        self, beta2: np.ndarray, rest: np.ndarray, *, lcurve: bool = True
+    ) -> ParameterCurve:
         """Curves for frames with squared coefficients beta2 (B, r) and unreachable rest.
 
         The residual and GCV are computed here, which is all that GCV and the discrepancy
-        principle need; the seminorm and the L-curve's curvature when first read.
+        principle need; the seminorm and the L-curve's curvature when first read. With
+        ``lcurve=False`` they are NaN, and nothing is kept to compute them (large batches:
+        what a curve keeps stays allocated as long as the result).
         """
         data = self._compress(beta2).T
         residual = (self._residual_weight @ data).T + rest[:, None]
         with np.errstate(divide="ignore", invalid="ignore"):
             gcv = self.count * residual / (self.count - self.trace) ** 2
         gcv = np.where(self.count - self.trace > 0.5, gcv, np.inf)
-        return ParameterCurve(self.grid, np.sqrt(residual), gcv, _LCurve(self, data, residual))
+        later = _LCurve(self, data, residual) if lcurve else _Missing(residual.shape)
+        return ParameterCurve(self.grid, np.sqrt(residual), gcv, later)
 
     def lcurve(self, data: np.ndarray, residual: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """|L x| and the L-curve's curvature (B, n) from compressed beta^2 (bins, B)."""

@@ -131,9 +131,12 @@ class MirrorBlocks:
             extra[chunk] = products[0][:, first:]  # the extra directions ride on even-even
         return coefficients, extra
 
-    def synthesize(self, filtered: np.ndarray, extra: np.ndarray) -> np.ndarray:
+    def synthesize(
+        self, filtered: np.ndarray, extra: np.ndarray, out: np.ndarray | None = None
+    ) -> np.ndarray:
         """Load-grid batch (B, rows, cols) from mode coefficients and extra coefficients."""
-        out = np.empty((filtered.shape[0], *self._shape))
+        if out is None:
+            out = np.empty((filtered.shape[0], *self._shape))
         for chunk in self._chunks(filtered.shape[0]):
             groups = [filtered[chunk, modes] for modes in self._modes]
             if self._extra:

@@ -96,8 +96,13 @@ class Spectrum:
         """(beta (B, r), free (B, n_free), unreachable energy (B,)) of frames (B, rows, cols)."""
         raise NotImplementedError
 
-    def synthesize(self, filtered: np.ndarray, free: np.ndarray) -> np.ndarray:
-        """Pressure (B, *load_shape) from filtered coefficients f * beta and the free part."""
+    def synthesize(
+        self, filtered: np.ndarray, free: np.ndarray, out: np.ndarray | None = None
+    ) -> np.ndarray:
+        """Pressure (B, *load_shape) from filtered coefficients f * beta and the free part.
+
+        Written into `out` (B, *load_shape) when given.
+        """
         raise NotImplementedError
 
     def shifted_solve(self, rhs: np.ndarray, alpha: float, beta: float) -> np.ndarray:
@@ -158,14 +163,19 @@ class FastSpectrum(Spectrum):
         free = coefficients[:, : self.n_free]
         return coefficients[:, self.n_free :], free, np.zeros(frames.shape[0])
 
-    def synthesize(self, filtered: np.ndarray, free: np.ndarray) -> np.ndarray:
+    def synthesize(
+        self, filtered: np.ndarray, free: np.ndarray, out: np.ndarray | None = None
+    ) -> np.ndarray:
         batch = filtered.shape[0]
         full = np.concatenate([free, filtered], axis=1) if self.n_free else filtered
         if self._k == 1:
             fine = full.reshape(batch, *self.load_shape) * self._expansion
         else:
             fine = full[:, self._group_flat].reshape(batch, *self.load_shape) * self._expansion
-        return _idct(fine)
+        if out is None:
+            return _idct(fine)
+        out[...] = _idct(fine)
+        return out
 
     def cell_variance(self, factors: np.ndarray) -> np.ndarray:
         # x(i, j) = sum over coarse modes mu of f_mu beta_mu s_mu(i, j), with independent unit
@@ -304,11 +314,14 @@ class DenseSpectrum(Spectrum):
         rest -= np.einsum("ij,ij->i", free, free)
         return beta, free, np.maximum(rest, 0.0)
 
-    def synthesize(self, filtered: np.ndarray, free: np.ndarray) -> np.ndarray:
+    def synthesize(
+        self, filtered: np.ndarray, free: np.ndarray, out: np.ndarray | None = None
+    ) -> np.ndarray:
         if self._mirror is not None:
-            return self._mirror.synthesize(filtered, free)
+            return self._mirror.synthesize(filtered, free, out)
         coefficients = np.concatenate([filtered, free], axis=1) if self.n_free else filtered
-        flat = coefficients @ self._synthesis
+        flat = None if out is None else out.reshape(filtered.shape[0], -1)
+        flat = np.matmul(coefficients, self._synthesis, out=flat)
         return flat.reshape(filtered.shape[0], *self.load_shape)
 
     def cell_variance(self, factors: np.ndarray) -> np.ndarray:
