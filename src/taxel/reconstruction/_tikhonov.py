@@ -257,8 +257,10 @@ class TikhonovSolver:
         frames in a batch of 1000: 3700 page faults a call, about 6 us a frame).
         """
         size = max(_CHUNK_BYTES // (8 * frames[0].size), 1)
+        # a batch keeps its L-curves only when the rule needs them or it is a few frames
+        keep = rule == "lcurve" or frames.shape[0] <= _CURVES_KEPT
         if frames.shape[0] <= size:
-            return self._solve_chunk(frames, rule, value, noise_level, tau)
+            return self._solve_chunk(frames, rule, value, noise_level, tau, keep)
         pressure = np.empty((frames.shape[0], *self.spec.load_shape))
         parts = [
             self._solve_chunk(
@@ -267,6 +269,7 @@ class TikhonovSolver:
                 value,
                 noise_level,
                 tau,
+                keep,
                 pressure[start : start + size],
             )
             for start in range(0, frames.shape[0], size)
@@ -283,6 +286,7 @@ class TikhonovSolver:
         value: float | None,
         noise_level: float | np.ndarray | None,
         tau: float,
+        keep: bool,
         out: np.ndarray | None = None,
     ) -> tuple:
         spectrum = self.spectrum
@@ -291,9 +295,7 @@ class TikhonovSolver:
         if rule == "given":
             lam = np.full(frames.shape[0], value)
         else:
-            # a batch keeps its L-curve only when the rule needs it or it is a few frames
-            lcurve = rule == "lcurve" or frames.shape[0] <= _CURVES_KEPT
-            curve = self.scan.curves(beta**2, rest, lcurve=lcurve)
+            curve = self.scan.curves(beta**2, rest, lcurve=keep)
             if rule == "discrepancy":
                 if noise_level is None:
                     noise = self._noise(frames, beta)
