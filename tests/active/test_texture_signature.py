@@ -140,6 +140,12 @@ def test_features_layout_and_nan_above_nyquist():
         ({"trim_fraction": 0.5}, ValueError, r"`trim_fraction` must lie in \[0, 0.45\]"),
         ({"band_edges": [5.0, 3.0]}, ValueError, "`band_edges` must be at least two increasing"),
         ({"segment_length": -1}, ValueError, "`segment_length` must be > 0, got -1"),
+        # 160 steps kept, at 35 Hz and 50 mm/s: 0.2286 m of travel
+        (
+            {"segment_length": 0.25},
+            ValueError,
+            r"`segment_length` must be at most the record's travel \(0.2286 m: 160 steps",
+        ),
         ({"readings": np.full(200, np.nan)}, ValueError, "`readings` must be finite"),
         ({"readings": np.ones(12), "time": np.arange(12.0)}, ValueError, "at least 16 steps"),
     ],

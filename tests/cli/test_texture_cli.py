@@ -114,6 +114,15 @@ def test_errors_are_one_line(folders, tmp_path, capsys):
     assert stop.value.code == 2
     assert "--neighbors: must be >= 1, got 0" in _one_line_error(capsys)
 
+    # each recording travels 0.3 m, 0.24 m after trimming: no room for a 0.5 m segment
+    code = main(
+        ["texture", "fit", str(train), "--out", str(model_path), "--segment-length", "0.5"]
+    )
+    assert code == 2
+    error = _one_line_error(capsys)
+    assert "_F150_V" in error and "`segment_length` must be at most the record's travel" in error
+    assert not model_path.exists()
+
     main(["texture", "fit", str(train), "--out", str(model_path)])
     capsys.readouterr()
     broken = test / "Ribbed_F150_V-50mmps_2.csv"

@@ -57,8 +57,8 @@ def spatial_power_spectrum(
     sliding_velocity : float
         v [m/s], nonzero; the sign (direction) does not matter.
     segment_length : float
-        Travel per Welch segment [m], > 0; sets the resolution 1 / `segment_length`
-        [cycles/m] whatever the speed.
+        Travel per Welch segment [m], > 0 and at most the record's travel; sets the
+        resolution 1 / `segment_length` [cycles/m] whatever the speed.
 
     Returns
     -------
@@ -78,7 +78,8 @@ def spatial_power_spectrum(
 
     which keeps the variance: the integral of S_x over k equals that of S_t over f. A
     segment spans `segment_length` of travel, round(segment_length fs / |v|) samples
-    (at least 8, at most the whole record).
+    (at least 8); a segment longer than the record is an error, since the record cannot
+    give that resolution.
 
     Examples
     --------
@@ -99,7 +100,14 @@ def spatial_power_spectrum(
     n_steps = readings.shape[0]
     if n_steps < MIN_STEPS:
         raise ValueError(f"`readings` must have at least {MIN_STEPS} steps, got {n_steps}")
-    samples = int(np.clip(round(segment_length * sampling_rate / speed), 8, n_steps))
+    samples = round(segment_length * sampling_rate / speed)
+    if samples > n_steps:
+        travel = n_steps * speed / sampling_rate
+        raise ValueError(
+            f"`segment_length` must be at most the record's travel ({travel:.4g} m: "
+            f"{n_steps} steps at {speed:g} m/s and {sampling_rate:g} Hz), got {segment_length:g}"
+        )
+    samples = max(samples, 8)
     frequency, psd = _welch(readings, sampling_rate, samples)
     return frequency / speed, psd * speed
 
