@@ -30,6 +30,13 @@ def test_unknown_command_is_one_line_and_exit_2(capsys):
     assert error.count("\n") == 1 and "invalid choice: 'teleport'" in error
 
 
+def test_no_command_is_a_one_line_usage_error(capsys):
+    assert main([]) == 2
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert captured.err == "taxel: error: a COMMAND is required (taxel --help lists them)\n"
+
+
 def test_python_dash_m_runs_the_same_program():
     completed = subprocess.run(
         [sys.executable, "-m", "taxel", "--version"], capture_output=True, text=True, check=False

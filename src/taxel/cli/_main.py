@@ -77,9 +77,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = _build_parser()
     arguments = parser.parse_args(argv)
     handler: Callable[[argparse.Namespace], int] | None = getattr(arguments, "handler", None)
-    if handler is None:
-        parser.print_help()
-        return 0
+    if handler is None:  # no command: a usage error, as argparse treats a missing argument
+        sys.stderr.write("taxel: error: a COMMAND is required (taxel --help lists them)\n")
+        return EXIT_USAGE
     try:
         return handler(arguments)
     except BrokenPipeError:  # the reader closed the pipe (| head): stop quietly
