@@ -37,6 +37,29 @@ def test_no_command_is_a_one_line_usage_error(capsys):
     assert captured.err == "taxel: error: a COMMAND is required (taxel --help lists them)\n"
 
 
+def test_the_parser_s_names_are_the_library_s():
+    from taxel.cli._arguments import INDENTER_NAMES, PRESET_NAMES
+    from taxel.mechanics import INDENTER_NAMES as indenters
+    from taxel.sensor import PRESET_NAMES as presets
+
+    assert PRESET_NAMES == presets and INDENTER_NAMES == indenters
+
+
+def test_help_does_not_load_the_library_s_layers():
+    # the parser alone: `taxel --help` answers in a fraction of a second
+    code = (
+        "import sys; from taxel.cli._main import _build_parser; _build_parser(); "
+        "print(sorted(m for m in sys.modules if m.startswith(('taxel.', 'scipy'))))"
+    )
+    completed = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    )
+    loaded = completed.stdout
+    for layer in ("sensor", "mechanics", "transducers", "active", "features", "report"):
+        assert f"'taxel.{layer}" not in loaded
+    assert "'scipy" not in loaded
+
+
 def test_python_dash_m_runs_the_same_program():
     completed = subprocess.run(
         [sys.executable, "-m", "taxel", "--version"], capture_output=True, text=True, check=False

@@ -6,7 +6,46 @@ import argparse
 import math
 from collections.abc import Callable
 
-__all__ = ["finite", "integer_in", "positive", "preset", "real_in", "seed"]
+__all__ = [
+    "INDENTER_NAMES",
+    "PRESET_NAMES",
+    "finite",
+    "integer_in",
+    "positive",
+    "preset",
+    "real_in",
+    "seed",
+]
+
+# `taxel.sensor.PRESET_NAMES` and `taxel.mechanics.INDENTER_NAMES`, written out so that
+# building the parser (``taxel --help``, and every command) does not import the sensor and
+# mechanics layers, whose SciPy dependencies take seconds to load; a test checks they agree.
+PRESET_NAMES = (
+    "vhdta128",
+    "harmon10x20",
+    "resistive16",
+    "capacitive4x4",
+    "piezo8x8",
+    "photoelastic64",
+    "microbend16",
+    "reflective8x8",
+)
+INDENTER_NAMES = (
+    "pen",
+    "sphere",
+    "edge",
+    "cylinder",
+    "punch",
+    "washer",
+    "can",
+    "box-edge",
+    "box-corner",
+    "slot",
+    "hole",
+    "foam",
+    "rasp",
+    "screen",
+)
 
 
 def _number(text: str) -> float:
@@ -71,8 +110,6 @@ def seed(text: str) -> int:
 
 def preset(text: str) -> str:
     """The name of a sensor preset (`taxel.sensor.PRESET_NAMES`)."""
-    from taxel.sensor import PRESET_NAMES
-
     if text not in PRESET_NAMES:
         raise argparse.ArgumentTypeError(f"must be one of {', '.join(PRESET_NAMES)}; got {text!r}")
     return text

@@ -11,7 +11,7 @@ import json
 import sys
 from typing import Any
 
-from taxel.cli._arguments import preset, seed
+from taxel.cli._arguments import PRESET_NAMES, preset, seed
 
 __all__ = ["register"]
 
@@ -62,8 +62,6 @@ def register(commands: Any) -> None:
     commands : argparse._SubParsersAction
         The subcommand registry of the ``taxel`` parser.
     """
-    from taxel.sensor import PRESET_NAMES
-
     parser = commands.add_parser(
         "design",
         help="measure a preset sensor against Harmon's criteria",

@@ -18,7 +18,15 @@ from typing import Any
 
 import numpy as np
 
-from taxel.cli._arguments import finite, integer_in, positive, preset, seed
+from taxel.cli._arguments import (
+    INDENTER_NAMES,
+    PRESET_NAMES,
+    finite,
+    integer_in,
+    positive,
+    preset,
+    seed,
+)
 from taxel.cli._main import CommandLineError
 from taxel.io import check_new_file, write_files
 
@@ -192,9 +200,6 @@ def register(commands: Any) -> None:
     commands : argparse._SubParsersAction
         The subcommand registry of the ``taxel`` parser.
     """
-    from taxel.mechanics import INDENTER_NAMES
-    from taxel.sensor import PRESET_NAMES
-
     parser = commands.add_parser(
         "simulate",
         help="one raw frame of a preset sensor pressed by an object",

@@ -20,24 +20,13 @@ from typing import Any
 
 import numpy as np
 
-from taxel.active import (
-    DEFAULT_BAND_EDGES,
-    NORMALIZATIONS,
-    TextureClassifier,
-    fit_texture_classifier,
-    texture_features,
-    texture_signature,
-)
 from taxel.cli._arguments import integer_in, positive, real_in
-from taxel.io import (
-    check_new_file,
-    list_fabricslide_files,
-    parse_fabricslide_name,
-    read_fabricslide,
-)
 
 __all__ = ["register"]
 
+# `taxel.active.NORMALIZATIONS` (a test checks they agree): written out, so that building
+# the parser does not import taxel.active, whose dependencies take seconds to load
+_NORMALIZATIONS = ("static", "load")
 _SIGNATURE_SETTINGS = (
     "band_edges",
     "segment_length",
@@ -49,6 +38,9 @@ _SIGNATURE_SETTINGS = (
 
 def _features(path: Path, settings: Mapping[str, Any]) -> np.ndarray:
     """Texture features of one recording; an error names the recording."""
+    from taxel.active import texture_features, texture_signature
+    from taxel.io import read_fabricslide
+
     recording = read_fabricslide(path)
     options = {name: settings[name] for name in _SIGNATURE_SETTINGS if name in settings}
     try:
@@ -61,6 +53,9 @@ def _features(path: Path, settings: Mapping[str, Any]) -> np.ndarray:
 
 
 def _fit(arguments: argparse.Namespace) -> int:
+    from taxel.active import DEFAULT_BAND_EDGES, fit_texture_classifier
+    from taxel.io import check_new_file, list_fabricslide_files, parse_fabricslide_name
+
     # a folder named twice is read once
     files = list(
         dict.fromkeys(
@@ -97,6 +92,8 @@ def _fit(arguments: argparse.Namespace) -> int:
 
 
 def _classify(arguments: argparse.Namespace) -> int:
+    from taxel.active import TextureClassifier
+
     model = TextureClassifier.load(arguments.model)
     features = np.array([_features(Path(path), model.settings) for path in arguments.files])
     predictions = model.predict(features)
@@ -155,7 +152,7 @@ def register(commands: Any) -> None:
     )
     fit.add_argument(
         "--normalization",
-        choices=NORMALIZATIONS,
+        choices=_NORMALIZATIONS,
         default="load",
         help="'load': spectra of each taxel's share of the load at every step, unchanged by "
         "the force and its fluctuations (default); 'static': spectra of the readings, "

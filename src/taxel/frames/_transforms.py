@@ -10,7 +10,6 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from taxel._validation import as_finite_array
 
@@ -87,6 +86,19 @@ def as_pose(value: Any, *, name: str = "pose") -> np.ndarray:
     return pose
 
 
+def _is_rotation(value: Any) -> bool:
+    """Whether `value` is a scipy Rotation, without importing scipy's rotations for arrays.
+
+    (They take about 0.5 s to import: every import of taxel, each command-line run
+    included, would pay it.)
+    """
+    if isinstance(value, np.ndarray | list | tuple):
+        return False
+    from scipy.spatial.transform import Rotation
+
+    return isinstance(value, Rotation)
+
+
 def make_pose(rotation: Any = None, translation: Any = (0.0, 0.0, 0.0)) -> np.ndarray:
     """Build a 4x4 pose from a rotation and a translation [m].
 
@@ -110,7 +122,7 @@ def make_pose(rotation: Any = None, translation: Any = (0.0, 0.0, 0.0)) -> np.nd
     """
     pose = np.eye(4)
     if rotation is not None:
-        if isinstance(rotation, Rotation):
+        if _is_rotation(rotation):
             if not rotation.single:
                 raise ValueError("`rotation` must be a single rotation, got a stack")
             pose[:3, :3] = rotation.as_matrix()
