@@ -16,14 +16,16 @@ import zipfile
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from scipy.interpolate import PchipInterpolator
 
 from taxel._validation import as_finite_array
 from taxel.sensor._monotone import invert_pchip
 from taxel.sensor._sensor import TactileSensor
+
+if TYPE_CHECKING:
+    from scipy.interpolate import PchipInterpolator
 
 __all__ = ["Calibration", "check_calibration"]
 
@@ -92,6 +94,9 @@ class Calibration:
 
     @cached_property
     def _response(self) -> PchipInterpolator:
+        # imported here: scipy.interpolate takes ~0.8 s to import (see taxel.cli)
+        from scipy.interpolate import PchipInterpolator
+
         flat = self.direction * self.readings.reshape(len(self.pressures), -1)
         return PchipInterpolator(self.pressures, flat, axis=0)
 

@@ -11,7 +11,6 @@ import math
 from typing import Any
 
 import numpy as np
-from scipy import signal as sps
 
 from taxel._validation import as_finite_array, check_finite, check_positive
 from taxel.transducers._common import as_generator
@@ -127,6 +126,8 @@ def first_order_lag(
     # lfilter's state ahead of sample n is b1 x[n-1] + a y[n-1]; settled at `initial_value` it is
     # (g - a + a) initial_value, which makes the prepended sample come out as `initial_value` too.
     state = np.full((*x.shape[:-1], 1), gain * initial_value)
+    from scipy import signal as sps  # here: it takes ~1 s to import (see taxel.cli)
+
     out, _ = sps.lfilter([1.0 - gain, gain - decay], [1.0, -decay], extended, axis=-1, zi=state)
     return out[..., 1:]
 

@@ -12,7 +12,6 @@ import math
 from typing import Any
 
 import numpy as np
-from scipy import signal as sps
 
 from taxel._validation import as_finite_array, check_finite, check_positive
 from taxel.transducers._piezo_film import PVDF_D33, _check_d33
@@ -134,6 +133,8 @@ def charge_amplifier_output(
     increments = np.diff(charge, axis=-1, prepend=0.0)
     decay, gain = _filter_constants(time_step, feedback_resistance, feedback_capacitance)
     segments, length = _segments(increments, reset_interval)
+    from scipy import signal as sps  # here: it takes ~1 s to import (see taxel.cli)
+
     output = sps.lfilter([-gain / feedback_capacitance], [1.0, -decay], segments, axis=-1)
     return output.reshape(*stress.shape[:-1], -1)[..., :length]
 
