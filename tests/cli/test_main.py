@@ -38,11 +38,11 @@ def test_no_command_is_a_one_line_usage_error(capsys):
 
 
 def test_the_parser_s_names_are_the_library_s():
-    from taxel.cli._arguments import INDENTER_NAMES, PRESET_NAMES
-    from taxel.mechanics import INDENTER_NAMES as indenters
-    from taxel.sensor import PRESET_NAMES as presets
+    from taxel import mechanics, sensor
+    from taxel.cli import _arguments
 
-    assert PRESET_NAMES == presets and INDENTER_NAMES == indenters
+    assert sensor.PRESET_NAMES == _arguments.PRESET_NAMES
+    assert mechanics.INDENTER_NAMES == _arguments.INDENTER_NAMES
 
 
 def test_help_does_not_load_the_library_s_layers():
