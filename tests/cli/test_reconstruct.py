@@ -37,6 +37,7 @@ def test_writes_the_pressure_map_and_reports(frame_file, tmp_path, capsys):
     assert code == 0
     assert np.load(out).shape == (16, 16)
     text = capsys.readouterr().out
+    assert "centre of pressure (x, y) = (" in text
     # the default rule: the discrepancy principle with the noise estimated from the frame
     assert "lambda = " in text and "(discrepancy)" in text and "residual norm" in text
 
@@ -64,6 +65,11 @@ def test_json_summary(frame_file, tmp_path, capsys, method):
     assert summary["method"] == method and summary["rule"] == "discrepancy"
     assert summary["regularization"] > 0 and summary["residual_norm"] > 0
     assert summary["normal_force"] == pytest.approx(0.1 * 9 * 4e-6 * 40e3 * 10, rel=0.3)
+    if method == "support":  # the load alone: no noise of unloaded cells
+        # the load's centre: row 6, column 7 of 16 at a 2 mm pitch
+        assert summary["centroid_m"] == pytest.approx([-1e-3, -3e-3], abs=0.1e-3)
+    else:
+        assert len(summary["centroid_m"]) == 2
 
 
 def test_a_given_lambda_and_oversampling(frame_file, tmp_path, capsys):

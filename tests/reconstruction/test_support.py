@@ -70,6 +70,11 @@ def test_force_and_centroid_of_a_compact_load():
     assert result.support[truth > 0.6 * truth.max()].all()
     assert result.normal_force == pytest.approx(truth.sum() * THICK.load_pitch**2, rel=0.01)
     assert np.hypot(*(_centroid(result.pressure) - _centroid(truth))) < 0.05
+    # the same in metres in the sensor frame, from the result itself
+    row, col = _centroid(truth)
+    centre = [(col - (truth.shape[1] - 1) / 2), (row - (truth.shape[0] - 1) / 2)]
+    shift = np.subtract(result.centroid_m, np.multiply(centre, THICK.load_pitch))
+    assert np.hypot(*shift) < 0.05 * THICK.load_pitch
     # the whole-map Tikhonov estimate it started from carries the noise of every taxel
     linear = reconstruct(frame, THICK)
     assert np.hypot(*(_centroid(linear.pressure) - _centroid(truth))) > 0.1
@@ -165,3 +170,13 @@ def test_a_weak_second_contact_far_away_is_kept():
     weak = 1.3 * solver.threshold * std[5, 33] / gain.pressure[5, 33]
     result = solver.solve(frame + weak * solver.operator.apply(unit))
     assert result.support[5, 33] and "dropped" not in result.message
+
+
+def test_a_batch_has_a_centroid_per_frame_and_nan_without_force():
+    truth = np.zeros(SMALL.shape)
+    truth[2:4, 8:10] = 50e3  # rows 2-3, columns 8-9 of 12: (x, y) = (3, -3) pitches
+    frames = np.stack([SupportSolver(SMALL).operator.apply(truth), np.zeros(SMALL.shape)])
+    result = reconstruct(frames, SMALL, regularization=1e-9)  # exact without noise
+    assert result.centroid_m.shape == (2, 2)
+    np.testing.assert_allclose(result.centroid_m[0] / SMALL.load_pitch, [3.0, -3.0], atol=1e-3)
+    assert np.isnan(result.centroid_m[1]).all()

@@ -110,6 +110,7 @@ def _run(arguments: argparse.Namespace) -> int:
         "residual_norm": _plain(result.residual_norm),
         "solution_norm": _plain(result.solution_norm),
         "normal_force": _plain(result.normal_force),
+        "centroid_m": _finite_or_none(result.centroid_m),
         "load_shape": list(spec.load_shape),
         "load_pitch": spec.load_pitch,
         "converged": result.converged,
@@ -123,10 +124,26 @@ def _run(arguments: argparse.Namespace) -> int:
             f"{result.method} (order {result.order}), lambda = {_format(lam)} ({result.rule})\n"
             f"residual norm {_format(np.atleast_1d(result.residual_norm))}, "
             f"solution norm {_format(np.atleast_1d(result.solution_norm))}, "
-            f"force {_format(np.atleast_1d(result.normal_force))} N\n"
+            f"force {_format(np.atleast_1d(result.normal_force))} N{_centre_text(result)}\n"
             f"pressure map {result.pressure.shape} [Pa] written to {arguments.out}\n"
         )
     return 0
+
+
+def _finite_or_none(value):
+    """As `_plain`, with NaN (a centroid without force) as None: JSON has no NaN."""
+    plain = _plain(value)
+    if isinstance(plain, float):
+        return plain if np.isfinite(plain) else None
+    return [_finite_or_none(item) for item in plain]
+
+
+def _centre_text(result) -> str:
+    """', centre of pressure (x, y) = (.., ..) mm' for one frame with force, else ''."""
+    centre = np.asarray(result.centroid_m, dtype=float)
+    if centre.ndim != 1 or not np.isfinite(centre).all():
+        return ""
+    return f", centre of pressure (x, y) = ({centre[0] * 1e3:.3f}, {centre[1] * 1e3:.3f}) mm"
 
 
 def _plain(value):

@@ -72,3 +72,40 @@ class ReconstructionResult:
         """Total force sum(p) dA [N] (per frame for a batch)."""
         total = self.pressure.sum(axis=(-2, -1)) * self.spacing**2
         return float(total) if np.ndim(total) == 0 else total
+
+    @property
+    def centroid_m(self) -> tuple[float, float] | np.ndarray:
+        """Centre of pressure (x, y) in the sensor frame [m] (per frame for a batch).
+
+        The load grid is centred on the array (as `taxel.sensor.LoadGrid.coordinates`).
+        NaN where the total force is not positive. Every cell weighs in with its signed
+        pressure, so the noise of the unloaded cells of a Tikhonov or TSVD map moves it;
+        methods "support" and "nonneg" keep the load on the contact.
+
+        Returns
+        -------
+        (float, float) or numpy.ndarray, shape (..., 2)
+
+        Examples
+        --------
+        >>> pressure = np.zeros((5, 5))
+        >>> pressure[1, 3] = 2e5  # row 1, column 3: x = +1 cell, y = -1 cell
+        >>> result = ReconstructionResult(pressure, 0.0, "given", "naive", 0, 0.0, 0.0,
+        ...                               None, None, spacing=1e-3)
+        >>> [round(v * 1e3, 6) for v in result.centroid_m]
+        [1.0, -1.0]
+        """
+        pressure = self.pressure
+        rows, cols = pressure.shape[-2:]
+        x = (np.arange(cols) - (cols - 1) / 2) * self.spacing
+        y = (np.arange(rows) - (rows - 1) / 2) * self.spacing
+        total = pressure.sum(axis=(-2, -1))
+        positive = total > 0
+        safe = np.where(positive, total, 1.0)
+        centre = np.stack(
+            [pressure.sum(axis=-2) @ x / safe, pressure.sum(axis=-1) @ y / safe], axis=-1
+        )
+        centre = np.where(positive[..., None], centre, np.nan)
+        if centre.ndim == 1:
+            return float(centre[0]), float(centre[1])
+        return centre
