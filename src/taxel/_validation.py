@@ -19,6 +19,7 @@ __all__ = [
     "check_positive",
     "check_range",
     "check_shape",
+    "refuse_complex",
 ]
 
 
@@ -77,8 +78,23 @@ def check_choice(name: str, value: Any, choices: tuple[str, ...]) -> str:
     return str(value)
 
 
+def refuse_complex(name: str, value: Any) -> None:
+    """Raise TypeError naming `name` when `value` is a complex array.
+
+    NumPy casts a complex array to real with a warning only, dropping the imaginary part.
+    (A list of complex numbers fails the cast itself.)
+    """
+    dtype = getattr(value, "dtype", None)
+    if dtype is not None and getattr(dtype, "kind", None) == "c":
+        raise TypeError(f"`{name}` must be real, got a complex array ({dtype})")
+
+
 def as_finite_array(name: str, value: Any, *, ndim: int | None = None) -> np.ndarray:
-    """Return `value` as a float64 array, or raise when it has NaN/inf or the wrong ndim."""
+    """Return `value` as a float64 array, or raise when it has NaN/inf or the wrong ndim.
+
+    A complex array is refused (NumPy would drop its imaginary part with a warning only).
+    """
+    refuse_complex(name, value)
     try:
         array = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError):

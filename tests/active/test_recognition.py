@@ -105,6 +105,8 @@ def test_bad_commands_leave_the_finger_at_its_start(library):
         recognize_object("spoon", library=library)
     with pytest.raises(ValueError, match="`models` must name at least 2 models"):
         build_model_library(["washer"])
+    with pytest.raises(ValueError, match="`position_error` must be >= 0, got -1"):
+        build_model_library(["washer", "pen"], position_error=-1.0)
     other = ModelLibrary.from_templates(
         library.templates, library.labels, library.feature_names, normal_force=15.0,
         step=0.02, sensor="other",

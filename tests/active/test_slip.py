@@ -285,3 +285,23 @@ def test_calibration_keeps_the_false_alarm_budget(slip, hold, steady):
     assert calibration.to_dict()["static_evaluation"]["n_slip"] == 1
     with pytest.raises(ValueError, match="`false_alarm_budget` must lie in"):
         calibrate_slip_detector(trials, false_alarm_budget=2.0)
+
+
+@pytest.mark.parametrize(
+    ("settings", "message"),
+    [
+        ({"friction": -1.0}, "`friction` must be > 0, got -1"),
+        ({"friction": np.nan}, "`friction` must be finite"),
+        ({"hold_time": -1.0}, "`hold_time` must be > 0"),
+        ({"kinetic_ratio": 2.0}, r"`kinetic_ratio` must lie in \(0, 1\], got 2"),
+        ({"plateau": 5.0}, r"`plateau` must lie in \(0, 1\)"),
+        ({"sliding_speed": -0.01}, "`sliding_speed` must be > 0"),
+        ({"start": (0.0,)}, r"`start` must be an \(x, y\) pair"),
+        ({"vibration_band": (400.0, 80.0)}, "`vibration_band` must be"),
+        ({"vibration_band": (1.0, 2.0, 3.0)}, "`vibration_band` must be"),
+        ({"seed": -3}, "`seed` must be >= 0"),
+    ],
+)
+def test_scenario_settings_are_checked(settings, message):
+    with pytest.raises((ValueError, TypeError), match=message):
+        SlipScenario(**settings)

@@ -37,6 +37,7 @@ from taxel.features import (
 )
 from taxel.features._image import component_outlines
 from taxel.frames import make_pose
+from taxel.sensor import make_sensor
 
 PITCH = 3.3e-2 / 128
 
@@ -365,11 +366,29 @@ def test_pitch_pair_and_duck_typed_sensor():
         (np.zeros((8, 8)), 5.0, ValueError, "metres"),
         (np.zeros((8, 8)), (1e-3, 1e-3, 1e-3), ValueError, "pair"),
         (np.zeros((8, 8)), "1mm", TypeError, "`sensor_or_pitch`"),
+        (np.zeros((8, 8)), True, TypeError, "`sensor_or_pitch` must be a number in metres"),
+        (np.zeros((8, 8)), 1e-300, ValueError, r"taxel pitch in metres \(1 nm to 1 m\)"),
+        (np.zeros((8, 8)) + 1j, 1e-3, TypeError, "`image` must be numeric"),
     ],
 )
 def test_bad_input(image, pitch, error, match):
     with pytest.raises(error, match=match):
         extract(image, pitch)
+
+
+def test_a_pitch_saved_with_numpy_is_a_pitch():
+    image = np.zeros((8, 8))
+    image[3:5, 2:4] = 1.0
+    saved = np.array(1e-3)  # what np.load gives back for np.save(path, 1e-3)
+    assert extract(image, saved).contact.centroid_m == extract(image, 1e-3).contact.centroid_m
+
+
+def test_a_sensor_s_pitch_applies_to_its_own_frames_only():
+    sensor = make_sensor("resistive16")
+    with pytest.raises(
+        ValueError, match=r"`image` must be a frame of the sensor, shape \(16, 16\)"
+    ):
+        extract(np.zeros((16, 8)), sensor)
 
 
 def test_bad_options():

@@ -154,3 +154,28 @@ def test_harmon_array_output_stays_within_its_supply(presets):
     low, high = sensor.signal_range  # the ideal output from rest to full scale, +-5 %
     assert high < sensor.transducer.supply_voltage
     assert sensor.transducer.respond(sensor.full_scale) == pytest.approx(4.5)
+
+
+@pytest.mark.parametrize(
+    ("call", "match"),
+    [
+        (lambda s: s.read(np.zeros((5, 5))), r"`quantity` must have shape \(\.\.\., 16, 16\)"),
+        (lambda s: s.read(np.zeros(16)), r"got \(16,\)"),
+        (lambda s: s.mean_reading(np.zeros((5, 5))), "`quantity` must have shape"),
+        (lambda s: s.respond(np.zeros((16, 8))), "`quantity` must have shape"),
+        (lambda s: s.read_sequence(np.zeros((16, 16))), r"`quantities` must have shape \(frames"),
+        (lambda s: s.read_sequence(np.zeros((0, 16, 16))), "at least one frame, got 0"),
+        (lambda s: s.read(np.ones((16, 16)) + 1j), "`quantity` must be real"),
+    ],
+)
+def test_readings_of_frames_that_are_not_the_taxels_are_refused(call, match):
+    sensor = make_sensor("resistive16")
+    with pytest.raises((ValueError, TypeError), match=match):
+        call(sensor)
+
+
+def test_a_batch_of_frames_reads_as_each_frame():
+    sensor = make_sensor("resistive16")
+    quantities = np.stack([np.zeros(sensor.shape), np.full(sensor.shape, 0.5)])
+    expected = [sensor.mean_reading(quantity) for quantity in quantities]
+    np.testing.assert_allclose(sensor.mean_reading(quantities), expected)

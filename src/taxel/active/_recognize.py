@@ -88,6 +88,7 @@ def build_model_library(
         raise ValueError(f"`rotations` must be >= 1, got {rotations}")
     normal_force = check_positive("normal_force", normal_force)
     step = check_positive("step", step)
+    position_error = check_positive("position_error", position_error, allow_zero=True)
     chosen = imaging_sensor(sensor)
     generator = None if rng is None else np.random.default_rng(rng)
     templates, labels = [], []

@@ -46,7 +46,13 @@ from typing import Any
 import numpy as np
 from scipy import signal
 
-from taxel._validation import check_choice
+from taxel._validation import (
+    as_finite_array,
+    check_choice,
+    check_finite,
+    check_positive,
+    check_range,
+)
 from taxel.active._slip_frames import sensed_stress
 from taxel.mechanics import Sphere, effective_modulus, hertz_sphere, solve_contact
 from taxel.sensor import TactileSensor, make_sensor
@@ -101,6 +107,44 @@ class SlipScenario:
 
     def __post_init__(self) -> None:
         check_choice("kind", self.kind, SCENARIO_KINDS)
+        for name in (
+            "normal_force",
+            "radius",
+            "friction",
+            "hold_time",
+            "after_time",
+            "sliding_speed",
+            "relaxation_time",
+        ):
+            check_positive(name, getattr(self, name))
+        for name in (
+            "load_time",
+            "vibration_rate",
+            "vibration_amplitude",
+            "annulus_events",
+            "force_jitter",
+        ):
+            check_positive(name, getattr(self, name), allow_zero=True)
+        # fractions: mu_k <= mu_s, and the loads of a hold stay below mu_s N
+        check_range("kinetic_ratio", self.kinetic_ratio, 0.0, 1.0, low_inclusive=False)
+        check_range("initial_load", self.initial_load, 0.0, 1.0, high_inclusive=False)
+        check_range("plateau", self.plateau, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
+        check_range("friction_ripple", self.friction_ripple, 0.0, 1.0, high_inclusive=False)
+        check_range("annulus_amplitude", self.annulus_amplitude, 0.0, 1.0)
+        check_finite("direction", self.direction)
+        start = as_finite_array("start", self.start, ndim=1)
+        if start.shape != (2,):
+            raise ValueError(f"`start` must be an (x, y) pair [m], got {self.start!r}")
+        band = as_finite_array("vibration_band", self.vibration_band, ndim=1)
+        if band.shape != (2,) or not 0 < band[0] < band[1]:
+            raise ValueError(
+                f"`vibration_band` must be (low, high) with 0 < low < high [Hz], "
+                f"got {self.vibration_band!r}"
+            )
+        if isinstance(self.seed, bool) or not isinstance(self.seed, int | np.integer):
+            raise TypeError(f"`seed` must be an integer, got {self.seed!r}")
+        if self.seed < 0:
+            raise ValueError(f"`seed` must be >= 0, got {self.seed}")
 
 
 def random_slip_scenario(kind: str, rng: Any) -> SlipScenario:

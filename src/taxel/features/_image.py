@@ -28,7 +28,13 @@ import cv2
 import numpy as np
 
 from taxel._validation import check_finite, check_positive, check_range
-from taxel.features._sensor import cover_blur, cover_depth, hexagonal_resampled, pitch_pair
+from taxel.features._sensor import (
+    check_image_shape,
+    cover_blur,
+    cover_depth,
+    hexagonal_resampled,
+    pitch_pair,
+)
 
 __all__ = ["Prepared", "prepare"]
 
@@ -306,6 +312,7 @@ def prepare(
     (1, 21)
     """
     given = _as_image(image)
+    check_image_shape(given.shape, sensor_or_pitch)
     values = hexagonal_resampled(given, sensor_or_pitch)
     pitch = pitch_pair(sensor_or_pitch)
     smoothing = check_range("smoothing", smoothing, 0.0, 20.0)

@@ -16,6 +16,7 @@ import numpy as np
 from taxel._validation import check_positive
 
 __all__ = [
+    "check_image_shape",
     "cover_blur",
     "cover_depth",
     "hexagonal_resampled",
@@ -57,6 +58,10 @@ def cover_blur(sensor_or_pitch: Any) -> float:
     return width
 
 
+# Below a nanometre no tactile array exists, and areas (pitch squared) underflow.
+_SMALLEST_PITCH = 1e-9
+
+
 def pitch_pair(sensor_or_pitch: Any) -> tuple[float, float]:
     """(row pitch, column pitch) [m] from a pitch, a pair, or an object with `taxel_pitch`.
 
@@ -77,6 +82,10 @@ def pitch_pair(sensor_or_pitch: Any) -> tuple[float, float]:
     (0.001, 0.002)
     """
     value = getattr(sensor_or_pitch, "taxel_pitch", sensor_or_pitch)
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value.item()  # what np.load gives for a saved number
+    if isinstance(value, bool | np.bool_):
+        raise TypeError(f"`sensor_or_pitch` must be a number in metres, got {value!r}")
     if isinstance(value, tuple | list | np.ndarray):
         if len(value) != 2:
             raise ValueError(
@@ -92,11 +101,27 @@ def pitch_pair(sensor_or_pitch: Any) -> tuple[float, float]:
         pitch = check_positive("sensor_or_pitch", value)
         pair = (pitch, pitch)
     for number in pair:
-        if number > 1.0:
+        if not _SMALLEST_PITCH <= number <= 1.0:
             raise ValueError(
-                f"`sensor_or_pitch` must be a taxel pitch in metres (<= 1), got {number:g}"
+                f"`sensor_or_pitch` must be a taxel pitch in metres (1 nm to 1 m), got {number:g}"
             )
     return pair
+
+
+def check_image_shape(shape: tuple[int, ...], sensor_or_pitch: Any) -> None:
+    """Raise when a sensor is given and the image is not one of its frames.
+
+    The sensor's pitch and centre apply to its own frames only: an image of another shape
+    (a crop, a pressure map on a finer load grid) needs its own pitch.
+    """
+    if not hasattr(sensor_or_pitch, "taxel_pitch"):
+        return
+    expected = getattr(sensor_or_pitch, "shape", None)
+    if expected is not None and tuple(shape) != tuple(expected):
+        raise ValueError(
+            f"`image` must be a frame of the sensor, shape {tuple(expected)}, got "
+            f"{tuple(shape)}; give the image's own pitch instead of the sensor"
+        )
 
 
 def sensor_coordinates(

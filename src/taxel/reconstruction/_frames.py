@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_positive
+from taxel._validation import check_positive, refuse_complex
 from taxel.reconstruction._choice import RULES
 from taxel.reconstruction._spec import ForwardModelSpec
 
@@ -22,6 +22,7 @@ def as_frames(frames: Any, spec: ForwardModelSpec) -> tuple[np.ndarray, tuple[in
     NaN or inf is allowed only at dead taxels (they are excluded from every fit and set to
     zero here); anywhere else it is an error naming `frame`.
     """
+    refuse_complex("frame", frames)
     try:
         array = np.array(frames, dtype=np.float64)
     except (TypeError, ValueError):

@@ -250,7 +250,7 @@ class TactileSensor:
         A dynamic (piezoelectric) sensor responds to the step from rest to `quantity`, read
         one frame period later.
         """
-        quantity = np.asarray(quantity, dtype=float)
+        quantity = self._taxel_frames("quantity", quantity)
         if self.is_dynamic:
             series = np.stack([np.zeros_like(quantity), quantity], axis=-1)
             return self.transducer.respond(series, time_step=1.0 / self.frame_rate)[..., -1]
@@ -329,6 +329,17 @@ class TactileSensor:
         signal, raw = self._read(quantity, rng, temperature)
         return SensorFrame(raw, signal, quantity, fields, contact)
 
+    def _taxel_frames(self, name: str, values: Any, ndim: int = 2) -> np.ndarray:
+        """`values` as float frames of the taxels, shape (..., rows, cols), at least `ndim`-D."""
+        array = np.asarray(values, dtype=float)
+        if array.ndim < ndim or array.shape[-2:] != self.shape:
+            batch = "(frames, " if ndim == 3 else "(..., "
+            raise ValueError(
+                f"`{name}` must have shape {batch}{self.shape[0]}, {self.shape[1]}) for this "
+                f"sensor's taxels, got {array.shape}"
+            )
+        return array
+
     def _read(
         self, quantity: np.ndarray, rng: Any, temperature: float | None
     ) -> tuple[np.ndarray, np.ndarray]:
@@ -343,7 +354,7 @@ class TactileSensor:
         The mechanics are left out, so repeated frames of one load (a calibration's
         repeats) cost only the electronics. `rng` switches the noise on.
         """
-        quantity = as_finite_array("quantity", quantity)
+        quantity = self._taxel_frames("quantity", as_finite_array("quantity", quantity))
         return self._read(quantity, rng, temperature)[1]
 
     def mean_reading(self, quantity: Any) -> np.ndarray:
@@ -354,7 +365,7 @@ class TactileSensor:
         offset of a flooring converter), or the camera's mean level [DN] before rounding.
         Used to measure responses finer than one step (sensitivity, monotonicity).
         """
-        quantity = as_finite_array("quantity", quantity)
+        quantity = self._taxel_frames("quantity", as_finite_array("quantity", quantity))
         transducer = self.transducer
         if isinstance(transducer, FtirTransducer):  # the camera quantises; undo its rounding
             fraction = transducer.light_fraction(quantity)
@@ -380,7 +391,9 @@ class TactileSensor:
         the transducer's own dynamics (piezoelectric), and baseline drift, then the static
         readout chain frame by frame.
         """
-        series = as_finite_array("quantities", quantities)
+        series = self._taxel_frames("quantities", as_finite_array("quantities", quantities), 3)
+        if series.shape[0] == 0:
+            raise ValueError("`quantities` must hold at least one frame, got 0")
         step = 1.0 / self.frame_rate
         readout = self.readout
         moved = np.moveaxis(series, 0, -1)  # time along the last axis, as the dynamics expect
