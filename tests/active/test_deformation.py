@@ -153,3 +153,17 @@ def test_a_touch_too_faint_to_see_is_no_failure(calibration):
     assert result.area_pixels[1] > 0
     assert not result.deformable
     assert result.heights[1] == pytest.approx(top, abs=0.05e-3)
+
+
+def test_a_press_beyond_half_the_object_s_height_is_refused(calibration):
+    # a 1 kPa ball 10 cm across would flatten by more than its size at 12 N: linear
+    # elasticity no longer describes it, so the finger refuses instead of extrapolating
+    with pytest.raises(ValueError, match=r"would compress it by .* more than half its height"):
+        measure_deformation(
+            "soft ball",
+            calibration=calibration,
+            shape="ball",
+            size=0.05,
+            youngs_modulus=1e3,
+            poisson_ratio=0.4,
+        )

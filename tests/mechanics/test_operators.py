@@ -108,6 +108,20 @@ def test_thick_layer_is_a_halfspace_and_thin_layer_is_oedometric():
     assert np.allclose(displacement.apply(load)[centre], oedometric * thin, rtol=2e-3)
 
 
+def test_a_layer_a_twentieth_of_a_cell_thick_is_still_oedometric_and_thinner_is_refused():
+    # the thinnest layer modelled: 1/20 of a 0.2 mm cell; the correction's quadrature holds
+    thin = 0.01e-3
+    displacement = surface_displacement_operator((32, 32), 0.2e-3, COVER, thickness=thin)
+    load = np.zeros((32, 32))
+    load[8:24, 8:24] = 1e4
+    oedometric = 1e4 / COVER.constrained_modulus
+    assert np.allclose(displacement.apply(load)[14:18, 14:18], oedometric * thin, rtol=3e-3)
+    for build in (surface_displacement_operator, depth_strain_operator):
+        extra = (thin / 4,) if build is depth_strain_operator else ()
+        with pytest.raises(ValueError, match=r"`thickness` must be at least 1/20 of the grid"):
+            build((8, 8), 0.2e-3, *extra, COVER, thickness=0.009e-3)
+
+
 def test_incompressible_halfspace_strain_of_uniform_load_vanishes():
     operator = depth_strain_operator((32, 32), 0.5e-3, 0.5e-3, RUBBER, periodic=True)
     strain = operator.apply(np.full((32, 32), 1e4))
