@@ -175,6 +175,25 @@ def test_isotonic_regression_matches_pool_adjacent_violators():
     assert np.all(np.diff(fitted, axis=0) >= -1e-12)
 
 
+def test_a_failed_save_keeps_the_old_file_and_leaves_no_partial_one(
+    tmp_path, sensors, monkeypatch
+):
+    calibration = calibrate(sensors["reflective8x8"], rng=5, repeats=3)
+    path = calibration.save(tmp_path / "reflective.npz")
+    before = path.read_bytes()
+
+    def disk_full(stream, **arrays):
+        stream.write(b"PK\x03\x04 half a zip")
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(np, "savez", disk_full)
+    with pytest.raises(OSError, match="No space left on device") as failure:
+        calibration.save(path, overwrite=True)
+    assert failure.value.filename == str(path)
+    assert path.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["reflective.npz"]
+
+
 def test_save_and_load(tmp_path, sensors):
     sensor = sensors["reflective8x8"]
     calibration = calibrate(sensor, rng=5, repeats=3)

@@ -189,19 +189,29 @@ class Calibration:
             "full_scale": self.full_scale,
             "repeats": self.repeats,
         }
-        with open(path, "wb") as stream:
-            np.savez(
-                stream,
-                meta=np.array(json.dumps(meta)),
-                pressures=self.pressures,
-                readings=self.readings,
-                unresponsive=self.unresponsive,
-                pinned=self.pinned,
-                noise=self.noise,
-                felt_fraction=(
-                    np.ones(self.shape) if self.felt_fraction is None else self.felt_fraction
-                ),
-            )
+        # written beside the target and renamed once complete: a failed write (a full
+        # disk) leaves the old file as it was and no half-written one (taxel.io does the
+        # same for the other layers; the sensor layer cannot import it)
+        partial = path.with_name(f".{path.name}.partial")
+        try:
+            with open(partial, "wb") as stream:
+                np.savez(
+                    stream,
+                    meta=np.array(json.dumps(meta)),
+                    pressures=self.pressures,
+                    readings=self.readings,
+                    unresponsive=self.unresponsive,
+                    pinned=self.pinned,
+                    noise=self.noise,
+                    felt_fraction=(
+                        np.ones(self.shape) if self.felt_fraction is None else self.felt_fraction
+                    ),
+                )
+            os.replace(partial, path)
+        except OSError as error:  # named by the file asked for, not the temporary one
+            raise OSError(error.errno, error.strerror, str(path)) from None
+        finally:
+            partial.unlink(missing_ok=True)
         return path
 
     @classmethod
