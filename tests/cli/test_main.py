@@ -38,11 +38,12 @@ def test_no_command_is_a_one_line_usage_error(capsys):
 
 
 def test_the_parser_s_names_are_the_library_s():
-    from taxel import mechanics, sensor
+    from taxel import active, mechanics, sensor
     from taxel.cli import _arguments
 
     assert sensor.PRESET_NAMES == _arguments.PRESET_NAMES
     assert mechanics.INDENTER_NAMES == _arguments.INDENTER_NAMES
+    assert active.NORMALIZATIONS == _arguments.NORMALIZATIONS
 
 
 def test_help_does_not_load_the_library_s_layers():

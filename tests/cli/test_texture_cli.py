@@ -6,14 +6,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from taxel.active import (
-    NORMALIZATIONS,
-    TextureClassifier,
-    texture_features,
-    texture_signature,
-)
+from taxel.active import TextureClassifier, texture_features, texture_signature
 from taxel.cli import main
-from taxel.cli._texture import _NORMALIZATIONS, _features
+from taxel.cli._texture import _features
 from taxel.io import read_fabricslide
 
 HEADER = "timestamp, proximity1, proximity2, " + ", ".join(f"channel{i}" for i in range(1, 17))
@@ -101,10 +96,6 @@ def test_fit_never_writes_over_a_recording_and_reads_a_folder_once(folders, tmp_
     assert "is a folder; name a file" in _one_line_error(capsys)
     assert main(["texture", "fit", str(train), str(train), "--out", str(tmp_path / "m.json")]) == 0
     assert "fitted 6 recordings" in capsys.readouterr().out
-
-
-def test_the_normalization_choices_are_the_library_s():
-    assert _NORMALIZATIONS == NORMALIZATIONS
 
 
 def _one_line_error(capsys):

@@ -8,6 +8,7 @@ from collections.abc import Callable
 
 __all__ = [
     "INDENTER_NAMES",
+    "NORMALIZATIONS",
     "PRESET_NAMES",
     "finite",
     "integer_in",
@@ -17,9 +18,10 @@ __all__ = [
     "seed",
 ]
 
-# `taxel.sensor.PRESET_NAMES` and `taxel.mechanics.INDENTER_NAMES`, written out so that
-# building the parser (``taxel --help``, and every command) does not import the sensor and
-# mechanics layers, whose SciPy dependencies take seconds to load; a test checks they agree.
+# `taxel.sensor.PRESET_NAMES`, `taxel.mechanics.INDENTER_NAMES` and
+# `taxel.active.NORMALIZATIONS`, written out so that building the parser (``taxel --help``,
+# and every command) does not import those layers, whose SciPy dependencies take seconds to
+# load; a test checks they agree.
 PRESET_NAMES = (
     "vhdta128",
     "harmon10x20",
@@ -30,6 +32,7 @@ PRESET_NAMES = (
     "microbend16",
     "reflective8x8",
 )
+NORMALIZATIONS = ("static", "load")
 INDENTER_NAMES = (
     "pen",
     "sphere",

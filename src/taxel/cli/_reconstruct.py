@@ -101,6 +101,7 @@ def _run(arguments: argparse.Namespace) -> int:
         noise_level=arguments.noise_level,
     )
     write_frame(arguments.out, result.pressure, overwrite=arguments.overwrite, inputs=(path,))
+    centre = result.centroid_m
     summary = {
         "sensor": arguments.sensor,
         "method": result.method,
@@ -110,7 +111,7 @@ def _run(arguments: argparse.Namespace) -> int:
         "residual_norm": _plain(result.residual_norm),
         "solution_norm": _plain(result.solution_norm),
         "normal_force": _plain(result.normal_force),
-        "centroid_m": _finite_or_none(result.centroid_m),
+        "centroid_m": _finite_or_none(centre),
         "load_shape": list(spec.load_shape),
         "load_pitch": spec.load_pitch,
         "converged": result.converged,
@@ -124,7 +125,7 @@ def _run(arguments: argparse.Namespace) -> int:
             f"{result.method} (order {result.order}), lambda = {_format(lam)} ({result.rule})\n"
             f"residual norm {_format(np.atleast_1d(result.residual_norm))}, "
             f"solution norm {_format(np.atleast_1d(result.solution_norm))}, "
-            f"force {_format(np.atleast_1d(result.normal_force))} N{_centre_text(result)}\n"
+            f"force {_format(np.atleast_1d(result.normal_force))} N{_centre_text(centre)}\n"
             f"pressure map {result.pressure.shape} [Pa] written to {arguments.out}\n"
         )
     return 0
@@ -138,9 +139,9 @@ def _finite_or_none(value):
     return [_finite_or_none(item) for item in plain]
 
 
-def _centre_text(result) -> str:
+def _centre_text(centroid) -> str:
     """', centre of pressure (x, y) = (.., ..) mm' for one frame with force, else ''."""
-    centre = np.asarray(result.centroid_m, dtype=float)
+    centre = np.asarray(centroid, dtype=float)
     if centre.ndim != 1 or not np.isfinite(centre).all():
         return ""
     return f", centre of pressure (x, y) = ({centre[0] * 1e3:.3f}, {centre[1] * 1e3:.3f}) mm"

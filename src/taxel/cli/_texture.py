@@ -20,13 +20,10 @@ from typing import Any
 
 import numpy as np
 
-from taxel.cli._arguments import integer_in, positive, real_in
+from taxel.cli._arguments import NORMALIZATIONS, integer_in, positive, real_in
 
 __all__ = ["register"]
 
-# `taxel.active.NORMALIZATIONS` (a test checks they agree): written out, so that building
-# the parser does not import taxel.active, whose dependencies take seconds to load
-_NORMALIZATIONS = ("static", "load")
 _SIGNATURE_SETTINGS = (
     "band_edges",
     "segment_length",
@@ -152,7 +149,7 @@ def register(commands: Any) -> None:
     )
     fit.add_argument(
         "--normalization",
-        choices=_NORMALIZATIONS,
+        choices=NORMALIZATIONS,
         default="load",
         help="'load': spectra of each taxel's share of the load at every step, unchanged by "
         "the force and its fluctuations (default); 'static': spectra of the readings, "

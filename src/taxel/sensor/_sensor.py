@@ -250,7 +250,10 @@ class TactileSensor:
         A dynamic (piezoelectric) sensor responds to the step from rest to `quantity`, read
         one frame period later.
         """
-        quantity = self._taxel_frames("quantity", quantity)
+        return self._respond(self._taxel_frames("quantity", quantity), rng)
+
+    def _respond(self, quantity: np.ndarray, rng: Any = None) -> np.ndarray:
+        """`respond` on frames already checked."""
         if self.is_dynamic:
             series = np.stack([np.zeros_like(quantity), quantity], axis=-1)
             return self.transducer.respond(series, time_step=1.0 / self.frame_rate)[..., -1]
@@ -307,7 +310,7 @@ class TactileSensor:
 
     def _ideal_signal(self, pressure: np.ndarray) -> np.ndarray:
         fields = self.fields(pressure)
-        return np.asarray(self.respond(self.sensed_quantity(pressure, fields)), dtype=float)
+        return np.asarray(self._respond(self.sensed_quantity(pressure, fields)), dtype=float)
 
     def frame_from_pressure(
         self,
@@ -344,7 +347,7 @@ class TactileSensor:
         self, quantity: np.ndarray, rng: Any, temperature: float | None
     ) -> tuple[np.ndarray, np.ndarray]:
         generator = None if rng is None else np.random.default_rng(rng)
-        signal = self.respond(quantity, rng=generator)
+        signal = self._respond(quantity, generator)
         raw = self.readout_chain.apply(signal, rng=generator, temperature=temperature)
         return np.asarray(signal, dtype=float), np.asarray(raw)
 
@@ -374,7 +377,7 @@ class TactileSensor:
             span = transducer.bright_level - transducer.dark_level
             signal = transducer.dark_level + span * fraction
         else:
-            signal = np.asarray(self.respond(quantity), dtype=float)
+            signal = np.asarray(self._respond(quantity), dtype=float)
         chain = self.readout_chain
         if self.readout.is_identity:
             return signal
@@ -414,7 +417,7 @@ class TactileSensor:
             signal = self.transducer.respond(moved, time_step=step)
         else:
             signal = np.moveaxis(
-                np.asarray([self.respond(frame) for frame in np.moveaxis(moved, -1, 0)]), 0, -1
+                np.asarray([self._respond(frame) for frame in np.moveaxis(moved, -1, 0)]), 0, -1
             )
         generator = None if rng is None else np.random.default_rng(rng)
         if readout.drift_rate:
