@@ -246,6 +246,24 @@ def test_packed_spectrum_equals_the_full_one(shape):
     assert ripple_spectrum(np.ones(shape, np.float32), pitch) is None
 
 
+def test_spectrum_of_a_ripple_whose_float32_squares_overflow():
+    # 1e15 units of ripple over 128 x 128 taxels: the frequency-weighted sum of the float32
+    # power is beyond float32's range; the measures come from float64 and do not change
+    from taxel.features._spectrum import ripple_spectrum
+
+    y, x = np.mgrid[:128, :128]
+    noise = 0.3 * np.random.default_rng(0).standard_normal((128, 128))
+    image = (np.cos(2 * np.pi * x / 3.3) + noise).astype(np.float32)
+    large = image * np.float32(1e15)
+    spectrum = np.abs(np.fft.rfft2((large - large.mean()) * np.outer(*[np.hanning(128)] * 2)))
+    # (the whole spectrum's power, twice the half's, times its mean frequency ~300 / m)
+    assert 2 * (spectrum**2).sum() * 300 > np.finfo(np.float32).max
+    small, measured = ripple_spectrum(image, (1e-3, 1e-3)), ripple_spectrum(large, (1e-3, 1e-3))
+    assert measured.strongest_per_m == small.strongest_per_m
+    assert measured.centroid_per_m == pytest.approx(small.centroid_per_m, rel=1e-6)
+    assert measured.band_energy == pytest.approx(small.band_energy, rel=1e-6)
+
+
 def test_planarity_and_normal():
     y, x = np.mgrid[:128, :128] - 63.5
     face = (np.hypot(x, y) < 30).astype(float)  # an evenly pressed flat face
@@ -369,6 +387,9 @@ def test_pitch_pair_and_duck_typed_sensor():
         (np.zeros((8, 8)), True, TypeError, "`sensor_or_pitch` must be a number in metres"),
         (np.zeros((8, 8)), 1e-300, ValueError, r"taxel pitch in metres \(1 nm to 1 m\)"),
         (np.zeros((8, 8)) + 1j, 1e-3, TypeError, "`image` must be numeric"),
+        # finite, but infinite in float32 (what the features compute in) or near it
+        (np.full((8, 8), 1e39), 1e-3, ValueError, r"within \+-1e\+15 .* magnitude 1e\+39"),
+        (np.eye(8) * -2e15, 1e-3, ValueError, r"within \+-1e\+15 .* magnitude 2e\+15"),
     ],
 )
 def test_bad_input(image, pitch, error, match):
@@ -389,6 +410,26 @@ def test_a_sensor_s_pitch_applies_to_its_own_frames_only():
         ValueError, match=r"`image` must be a frame of the sensor, shape \(16, 16\)"
     ):
         extract(np.zeros((16, 8)), sensor)
+
+
+def test_features_of_large_values_are_those_of_small_ones():
+    # up to 1e15 image units: float32 squares of the spectrum overflow near 1e15 / 16384,
+    # and the spectrum is then computed in float64; ratios and types do not change
+    image = render(washer, ftir=True, noise=0.03, scratches=3, rng=0)
+    small = extract(image, 3.3e-2 / 128)
+    scale = 1e15 / float(image.max())
+    large = extract(image * scale, 3.3e-2 / 128)
+    assert large.contact_type == small.contact_type
+    assert large.holes.count == small.holes.count
+    assert large.texture.maxima_count == small.texture.maxima_count
+    assert large.texture.mean_height == pytest.approx(small.texture.mean_height * scale, rel=1e-5)
+    assert large.texture.band_energy == pytest.approx(small.texture.band_energy, rel=1e-5)
+    assert large.texture.spectral_centroid_per_m == pytest.approx(
+        small.texture.spectral_centroid_per_m, rel=1e-5
+    )
+    assert large.contact.centroid_m == pytest.approx(small.contact.centroid_m, abs=1e-9)
+    with pytest.raises(ValueError, match=r"`baseline` must lie within \+-1e\+15, got -1e\+308"):
+        extract(image, 3.3e-2 / 128, baseline=-1e308)
 
 
 def test_bad_options():

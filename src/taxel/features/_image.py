@@ -65,6 +65,9 @@ _LAPLACE_GAIN = math.sqrt(1.25)
 _LAPLACE_KERNEL = np.array([[0, -0.25, 0], [-0.25, 1, -0.25], [0, -0.25, 0]], np.float32)
 # Integer images of at most this many bits: their Laplacian residual is exact in float32.
 _EXACT_BITS = 16
+# The features compute in float32 (which ends at 3.4e38): values up to 1e15 keep their
+# squares and sums finite, and no tactile image comes near it (1e15 Pa is a petapascal).
+_LARGEST_VALUE = 1e15
 
 
 @dataclass(eq=False)
@@ -194,13 +197,28 @@ def _as_image(image: Any) -> np.ndarray:
         raise ValueError(f"`image` must be 2-D (rows, cols), got shape {array.shape}")
     if min(array.shape) < 3:
         raise ValueError(f"`image` must be at least 3x3 taxels, got shape {array.shape}")
-    image32 = np.ascontiguousarray(array, dtype=np.float32)
+    if kind == "f" and array.dtype.itemsize > 4:
+        with np.errstate(over="ignore"):  # values beyond float32's range: refused below
+            image32 = np.ascontiguousarray(array, dtype=np.float32)
+    else:
+        image32 = np.ascontiguousarray(array, dtype=np.float32)
     # integers are finite; a float image is when its sum is (one pass instead of two)
     if kind == "f" and not math.isfinite(float(image32.sum(dtype=np.float64))):
         bad = int(image32.size - np.count_nonzero(np.isfinite(image32)))
+        if bad and np.isfinite(array).all():  # finite, beyond float32's range
+            _refuse_size(array)
         if bad:
             raise ValueError(f"`image` must be finite everywhere, got {bad} NaN or inf value(s)")
     return image32
+
+
+def _refuse_size(values: np.ndarray) -> None:
+    """Raise the error for an image with values beyond +-`_LARGEST_VALUE`."""
+    largest = float(np.abs(values.astype(np.float64)).max())
+    raise ValueError(
+        f"`image` values must lie within +-{_LARGEST_VALUE:.0e} (the features compute in "
+        f"float32), got a value of magnitude {largest:.3g}"
+    )
 
 
 def laplacian_residual(image: np.ndarray, step: int = 1, *, whole: bool = False) -> np.ndarray:
@@ -279,7 +297,8 @@ def prepare(
     ----------
     image : array_like, shape (rows, cols)
         Raw frame (any integer or float dtype), calibrated reading or pressure map [Pa];
-        larger values mean more pressure.
+        larger values mean more pressure. Values beyond +-1e15 are refused (the features
+        compute in float32).
     sensor_or_pitch : float, pair or object with ``taxel_pitch``
         Taxel pitch [m], or a sensor description (a `taxel.sensor.TactileSensor`), whose
         cover depth then decides `defects`; a frame of a hexagonal array (of a sensor or an
@@ -331,7 +350,11 @@ def prepare(
         smooth = values
     noise = raw_noise * _smoothing_gain(smoothing)
     lowest, peak, _, peak_at = cv2.minMaxLoc(smooth)
+    if max(-lowest, peak) > _LARGEST_VALUE:  # (a smoothed value is never larger)
+        _refuse_size(values)
     level = lowest if baseline is None else check_finite("baseline", baseline)
+    if abs(level) > _LARGEST_VALUE:
+        raise ValueError(f"`baseline` must lie within +-{_LARGEST_VALUE:.0e}, got {level:.3g}")
     contrast = peak - level
     floor = max(_RELATIVE_FLOOR * max(abs(peak), abs(level)), 1e-30)
     low = level + max(K_LOW * noise, F_LOW * contrast)

@@ -116,18 +116,37 @@ def ripple_spectrum(image: np.ndarray, pitch: tuple[float, float]) -> RippleSpec
     ripple = image - np.float32(cv2.mean(image)[0])
     np.multiply(ripple, layout.window, out=ripple)
     packed = cv2.dft(ripple)
-    np.multiply(packed, packed, out=packed)
-    squares = packed.ravel()
-    squares[0] = 0.0  # the mean; also the missing imaginary part of the real bins
-    power = np.take(squares, layout.first)
-    power += np.take(squares, layout.second)
-    strongest = float(layout.frequency[cv2.minMaxLoc(power.reshape(1, -1))[3][0]])
-    power[layout.real_bins] *= 0.5
-    sums = np.add.reduceat(power.astype(np.float64), layout.starts)
-    total = float(sums.sum())
+    cv2.multiply(packed, packed, dst=packed)  # (overflows to inf without a warning)
+    spectrum = _band_powers(packed.ravel(), layout)
+    if not (math.isfinite(spectrum[2]) and math.isfinite(spectrum[3])):
+        # a ripple of more than ~1e15 / (rows x cols) image units overflows float32's
+        # squares or their sums: the measures are ratios, so the ripple is scaled to at
+        # most 1 and transformed in float64 instead (rare)
+        ripple64 = image - image.mean(dtype=np.float64)
+        ripple64 /= np.abs(ripple64).max()
+        ripple64 *= layout.window
+        packed64 = cv2.dft(ripple64)
+        spectrum = _band_powers(np.square(packed64, out=packed64).ravel(), layout)
+    sums, total, weighted, strongest = spectrum
     if total <= 0:
         return None
     if layout.empty is not None:
         sums[:OCTAVES][layout.empty] = 0.0  # an empty band holds nothing
     bands = sums[:OCTAVES] / total
-    return RippleSpectrum(strongest, dot(power, layout.frequency) / total, tuple(bands.tolist()))
+    return RippleSpectrum(strongest, weighted / total, tuple(bands.tolist()))
+
+
+def _band_powers(squares: np.ndarray, layout: _Layout) -> tuple[np.ndarray, float, float, float]:
+    """Power per band, the total, the frequency-weighted total, and the strongest frequency.
+
+    `squares`: the packed spectrum's entries squared (its first entry is overwritten). A
+    bin's power stands for it and its conjugate; a self-conjugate bin's counts half. Band
+    sums are float64. Sums that overflow are inf (no warning).
+    """
+    squares[0] = 0.0  # the mean; also the missing imaginary part of the real bins
+    power = np.take(squares, layout.first)
+    cv2.add(power, np.take(squares, layout.second), dst=power)
+    strongest = float(layout.frequency[cv2.minMaxLoc(power.reshape(1, -1))[3][0]])
+    power[layout.real_bins] *= 0.5
+    sums = np.add.reduceat(power.astype(np.float64), layout.starts)
+    return sums, float(sums.sum()), dot(power, layout.frequency), strongest
