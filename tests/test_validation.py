@@ -3,7 +3,15 @@
 import numpy as np
 import pytest
 
-from taxel._validation import as_finite_array
+from taxel._validation import (
+    as_finite_array,
+    as_rng,
+    check_count,
+    check_finite,
+    check_flag,
+    check_instance,
+    check_pair,
+)
 from taxel.frames import as_pose
 from taxel.reconstruction import reconstruct
 
@@ -37,3 +45,56 @@ def test_public_functions_refuse_complex_arrays():
 def test_other_bad_arrays(value, error, message):
     with pytest.raises(error, match=message):
         as_finite_array("x", value, ndim=1)
+
+
+@pytest.mark.parametrize("value", [True, np.bool_(False)])
+def test_a_bool_is_not_a_number(value):
+    with pytest.raises(TypeError, match="`x` must be a real number, got"):
+        check_finite("x", value)
+
+
+def test_a_pair_names_the_parameter():
+    assert check_pair("position", np.array([1, 2])) == (1.0, 2.0)
+    for bad in [(0,), 0.0, (1, 2, 3), "abc"]:
+        with pytest.raises(ValueError, match=r"`position` must be an \(x, y\) pair, got"):
+            check_pair("position", bad)
+    with pytest.raises(ValueError, match="`position` must be finite"):
+        check_pair("position", (0.0, np.nan))
+    with pytest.raises(TypeError, match="`position` must be a real number, got 'a'"):
+        check_pair("position", "ab")
+
+
+def test_counts_are_whole_numbers():
+    assert check_count("n", 3) == 3 and check_count("n", np.int64(4)) == 4
+    assert check_count("n", 2.0) == 2
+    with pytest.raises(ValueError, match="`n` must be a whole number, got 2.5"):
+        check_count("n", 2.5)
+    with pytest.raises(ValueError, match="`n` must be >= 1, got 0"):
+        check_count("n", 0)
+    with pytest.raises(TypeError, match="`n` must be an integer, got True"):
+        check_count("n", True)
+    with pytest.raises(ValueError, match="`n` must be finite"):
+        check_count("n", np.nan)
+
+
+@pytest.mark.parametrize("value", ["no", 1, np.nan, None])
+def test_a_flag_must_be_a_bool(value):
+    with pytest.raises(TypeError, match="`periodic` must be True or False, got"):
+        check_flag("periodic", value)
+    assert check_flag("periodic", np.bool_(True)) is True
+
+
+def test_an_instance_check_names_the_type():
+    with pytest.raises(TypeError, match="`material` must be a float, got 'rubber'"):
+        check_instance("material", "rubber", float)
+
+
+def test_rng_accepts_none_a_seed_or_a_generator():
+    generator = np.random.default_rng(3)
+    assert as_rng("rng", None) is None and as_rng("rng", generator) is generator
+    assert as_rng("rng", 5).random() == np.random.default_rng(5).random()
+    with pytest.raises(ValueError, match="`rng` seed must be >= 0, got -1"):
+        as_rng("rng", -1)
+    for bad in ["x", 1.5, True]:
+        with pytest.raises(TypeError, match="`rng` must be None, a numpy.random.Generator or"):
+            as_rng("rng", bad)

@@ -14,8 +14,13 @@ import numpy as np
 
 __all__ = [
     "as_finite_array",
+    "as_rng",
     "check_choice",
+    "check_count",
     "check_finite",
+    "check_flag",
+    "check_instance",
+    "check_pair",
     "check_positive",
     "check_range",
     "check_shape",
@@ -32,7 +37,12 @@ def _short(value: Any) -> str:
 
 
 def check_finite(name: str, value: Any) -> float:
-    """Return `value` as a float, or raise naming `name` when it is not a finite number."""
+    """Return `value` as a float, or raise naming `name` when it is not a finite number.
+
+    A bool is refused: ``True`` standing for 1 is almost always a slip.
+    """
+    if isinstance(value, bool | np.bool_):
+        raise TypeError(f"`{name}` must be a real number, got {value!r}")
     try:
         number = float(value)
     except (TypeError, ValueError):
@@ -111,3 +121,55 @@ def check_shape(name: str, array: np.ndarray, shape: tuple[int, ...]) -> None:
     """Raise when `array` does not have exactly `shape`."""
     if tuple(array.shape) != tuple(shape):
         raise ValueError(f"`{name}` must have shape {tuple(shape)}, got {tuple(array.shape)}")
+
+
+def check_pair(name: str, value: Any) -> tuple[float, float]:
+    """Return `value` as a pair of finite floats, or raise naming `name`."""
+    try:
+        first, second = value
+    except (TypeError, ValueError):
+        raise ValueError(f"`{name}` must be an (x, y) pair, got {_short(value)}") from None
+    return check_finite(name, first), check_finite(name, second)
+
+
+def check_count(name: str, value: Any, *, minimum: int = 1) -> int:
+    """Return `value` as an int >= `minimum`; a bool or a fractional number is refused."""
+    if isinstance(value, bool | np.bool_):
+        raise TypeError(f"`{name}` must be an integer, got {value!r}")
+    if isinstance(value, int | np.integer):
+        count = int(value)
+    else:
+        number = check_finite(name, value)
+        if not number.is_integer():
+            raise ValueError(f"`{name}` must be a whole number, got {number:g}")
+        count = int(number)
+    if count < minimum:
+        raise ValueError(f"`{name}` must be >= {minimum}, got {count}")
+    return count
+
+
+def check_flag(name: str, value: Any) -> bool:
+    """Return `value` when it is a bool; a truthy string such as "no" is refused."""
+    if not isinstance(value, bool | np.bool_):
+        raise TypeError(f"`{name}` must be True or False, got {_short(value)}")
+    return bool(value)
+
+
+def check_instance(name: str, value: Any, kind: type) -> None:
+    """Raise TypeError naming `name` when `value` is not an instance of `kind`."""
+    if not isinstance(value, kind):
+        raise TypeError(f"`{name}` must be a {kind.__name__}, got {_short(value)}")
+
+
+def as_rng(name: str, rng: Any) -> np.random.Generator | None:
+    """Return `rng` as a NumPy Generator, or None for None (no noise).
+
+    An int >= 0 is a seed and a Generator is used as it is; anything else is refused.
+    """
+    if rng is None or isinstance(rng, np.random.Generator):
+        return rng
+    if isinstance(rng, int | np.integer) and not isinstance(rng, bool):
+        if rng < 0:
+            raise ValueError(f"`{name}` seed must be >= 0, got {int(rng)}")
+        return np.random.default_rng(int(rng))
+    raise TypeError(f"`{name}` must be None, a numpy.random.Generator or an int seed, got {rng!r}")

@@ -6,6 +6,8 @@ from typing import Any, ClassVar, Protocol, runtime_checkable
 
 import numpy as np
 
+from taxel._validation import as_rng
+
 __all__ = ["Transducer", "as_generator"]
 
 
@@ -49,10 +51,8 @@ def as_generator(name: str, rng: Any) -> np.random.Generator:
 
     There is no default: randomness is always explicit, and no global state is touched.
     """
-    if isinstance(rng, np.random.Generator):
-        return rng
-    if isinstance(rng, int | np.integer) and not isinstance(rng, bool):
-        if rng < 0:
-            raise ValueError(f"`{name}` seed must be >= 0, got {int(rng)}")
-        return np.random.default_rng(int(rng))
-    raise TypeError(f"`{name}` must be a numpy.random.Generator or an int seed, got {rng!r}")
+    if rng is None or isinstance(rng, str | float | bool):
+        raise TypeError(f"`{name}` must be a numpy.random.Generator or an int seed, got {rng!r}")
+    generator = as_rng(name, rng)
+    assert generator is not None
+    return generator
