@@ -72,6 +72,21 @@ def test_zero_padded_kernels_are_the_exact_cell_integrals():
     )
 
 
+@pytest.mark.parametrize("shape", [(1, 1), (2, 2), (3, 5), (8, 8), (8, 1), (13, 7)])
+def test_zero_padded_operator_is_the_linear_convolution_of_its_kernel_on_any_grid(shape):
+    # grids whose padded FFT length is odd (2 * 8 - 1 = 15) once wrapped around by a cell
+    operator = surface_displacement_operator(shape, SPACING, COVER)
+    field = np.random.default_rng(3).random(shape)
+    rows, cols = shape
+    expected = np.zeros(shape)
+    for row in range(rows):
+        for col in range(cols):
+            window = operator.kernel[rows - 1 - row : 2 * rows - 1 - row]
+            window = window[:, cols - 1 - col : 2 * cols - 1 - col]
+            expected += field[row, col] * window
+    assert np.allclose(operator.apply(field), expected, rtol=1e-12, atol=0)
+
+
 def test_superposition():
     operator = depth_strain_operator((16, 16), 0.5e-3, 1e-3, COVER)
     rng = np.random.default_rng(3)

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from scipy import fft
 
-from taxel._validation import as_finite_array, check_positive
+from taxel._validation import as_finite_array, check_count, check_positive
 from taxel.mechanics._kernels import depth_kernel, displacement_kernel, offsets
 from taxel.mechanics._materials import ElasticMaterial
 from taxel.mechanics._transfer import (
@@ -26,7 +26,9 @@ from taxel.mechanics._transfer import (
 )
 
 __all__ = [
+    "MIN_SPACING",
     "ConvolutionOperator",
+    "as_shape",
     "as_spacing",
     "depth_strain_operator",
     "depth_stress_operator",
@@ -34,23 +36,31 @@ __all__ = [
 ]
 
 
+MIN_SPACING = 1e-9
+"""Smallest grid spacing accepted [m]: below a nanometre continuum mechanics does not apply."""
+
+
 def as_spacing(spacing: Any) -> tuple[float, float]:
     """Return (row spacing dy, column spacing dx) [m] from a scalar or a pair."""
-    values = np.atleast_1d(np.asarray(spacing, dtype=float))
-    if values.size not in (1, 2):
+    if spacing is None or isinstance(spacing, str | bool | np.bool_):
+        raise TypeError(f"`spacing` must be a number or a (dy, dx) pair, got {spacing!r}")
+    values = np.atleast_1d(as_finite_array("spacing", spacing))
+    if values.ndim != 1 or values.size not in (1, 2):
         raise ValueError(f"`spacing` must be a number or a (dy, dx) pair, got {spacing!r}")
     dy, dx = (values[0], values[0]) if values.size == 1 else (values[0], values[1])
-    return check_positive("spacing", dy), check_positive("spacing", dx)
+    for step in (dy, dx):
+        if check_positive("spacing", step) < MIN_SPACING:
+            raise ValueError(f"`spacing` must be >= {MIN_SPACING:g} m, got {step:g}")
+    return float(dy), float(dx)
 
 
-def _as_shape(shape: Any) -> tuple[int, int]:
+def as_shape(shape: Any) -> tuple[int, int]:
+    """Return (rows, cols) from a pair of whole numbers >= 1, or raise naming `shape`."""
     try:
-        rows, cols = (int(n) for n in shape)
+        rows, cols = shape
     except (TypeError, ValueError):
         raise ValueError(f"`shape` must be a (rows, cols) pair, got {shape!r}") from None
-    if rows < 1 or cols < 1:
-        raise ValueError(f"`shape` must be positive, got {shape!r}")
-    return rows, cols
+    return check_count("shape", rows), check_count("shape", cols)
 
 
 class ConvolutionOperator:
@@ -132,7 +142,10 @@ class ConvolutionOperator:
 def _embed(kernel: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
     """Place a kernel on offsets -(n-1)..(n-1) into a wrapped FFT grid; return its rfft2."""
     rows, cols = shape
+    # the last axis must be even: the operator recovers its length as 2 * (bins - 1)
     fft_rows, fft_cols = fft.next_fast_len(2 * rows - 1), fft.next_fast_len(2 * cols - 1, True)
+    while fft_cols % 2:
+        fft_cols = fft.next_fast_len(fft_cols + 1, True)
     padded = np.zeros((fft_rows, fft_cols))
     row_index = np.arange(-(rows - 1), rows) % fft_rows
     col_index = np.arange(-(cols - 1), cols) % fft_cols
@@ -189,7 +202,7 @@ def surface_displacement_operator(
     >>> bool(np.isclose(np.vdot(op.apply(x), y), np.vdot(x, op.adjoint(y))))
     True
     """
-    shape = _as_shape(shape)
+    shape = as_shape(shape)
     spacing = as_spacing(spacing)
     if thickness is not None:
         thickness = check_positive("thickness", thickness)
@@ -222,7 +235,7 @@ def _depth_operator(
     thickness: float | None,
 ) -> ConvolutionOperator:
     """Shared construction of the operators to a quantity at depth (strain or stress)."""
-    shape = _as_shape(shape)
+    shape = as_shape(shape)
     spacing = as_spacing(spacing)
     depth = check_positive("depth", depth)
     if thickness is not None:
