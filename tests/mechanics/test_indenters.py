@@ -175,3 +175,30 @@ def test_library_builds_every_named_indenter():
 def test_bad_parameters(factory, match):
     with pytest.raises(ValueError, match=match):
         factory()
+
+
+@pytest.mark.parametrize("position", [(0,), 0.0, (1e-3, 2e-3, 0.0)])
+def test_a_position_must_be_an_x_y_pair(position):
+    with pytest.raises(ValueError, match=r"`position` must be an \(x, y\) pair, got"):
+        Sphere(5e-3).on_grid((8, 8), 1e-3, position=position)
+
+
+@pytest.mark.parametrize(
+    ("shape", "match"),
+    [
+        ((-8, 8), "`shape` must be >= 1, got -8"),
+        ((0, 8), "`shape` must be >= 1, got 0"),
+        ((8.5, 8), "`shape` must be a whole number, got 8.5"),
+        ((2, 3, 4), r"`shape` must be a \(rows, cols\) pair"),
+        (5, r"`shape` must be a \(rows, cols\) pair"),
+    ],
+)
+def test_a_grid_shape_must_be_two_counts(shape, match):
+    with pytest.raises(ValueError, match=match):
+        Sphere(5e-3).on_grid(shape, 1e-3)
+
+
+def test_heights_of_mismatched_coordinates_are_refused():
+    with pytest.raises(ValueError, match=r"`x` and `y` must have matching shapes, got \(3,\)"):
+        Sphere(5e-3).heights(np.zeros(3), np.zeros(4))
+    assert Sphere(5e-3).heights(np.zeros((1, 3)), np.zeros((4, 1))).shape == (4, 3)

@@ -323,6 +323,10 @@ def test_the_grid_minimum_is_refined_to_the_parabola_vertex():
         (lambda: reconstruct(np.zeros((4, 4)), "resistive16"), "`frame` must have shape"),
         (lambda: reconstruct(np.full((16, 16), np.nan), "resistive16"), "`frame` must be finite"),
         (
+            lambda: reconstruct(np.zeros((0, 16, 16)), "resistive16"),
+            r"`frame` must hold at least one frame, got shape \(0, 16, 16\)",
+        ),
+        (
             lambda: reconstruct(np.zeros((16, 16)), "resistive16", regularization=-1.0),
             "`regularization` must be >= 0, got -1",
         ),

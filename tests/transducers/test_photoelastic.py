@@ -125,3 +125,7 @@ def test_errors_name_the_parameter():
         PhotoelasticTransducer(layer_thickness=0.0)
     with pytest.raises(ValueError, match="`passes` must be a positive integer, got 0"):
         PhotoelasticTransducer(passes=0)
+    with pytest.raises(ValueError, match=r"`intensity` must be a path .*, got shape \(0,\)"):
+        unwrap_retardation(np.zeros(0))
+    with pytest.raises(ValueError, match=r"`intensity` must be a path .*, got shape \(\)"):
+        unwrap_retardation(0.5)

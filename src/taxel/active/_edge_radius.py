@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_finite, check_positive
+from taxel._validation import as_rng, check_finite, check_pair, check_positive
 from taxel.active._edge_section import EdgeCrossSection, edge_cross_section
 from taxel.active._edge_table import EdgeRadiusTable, fit_edge_radius_table
 from taxel.active._finger import SimulatedFinger
@@ -79,7 +79,7 @@ def make_edge(
     angle = check_finite("angle", angle)
     pose = np.eye(4)
     pose[:2, :2] = [[math.cos(angle), -math.sin(angle)], [math.sin(angle), math.cos(angle)]]
-    pose[:2, 3] = [check_finite("position", position[0]), check_finite("position", position[1])]
+    pose[:2, 3] = check_pair("position", position)
     return ProfileObject(
         name=f"edge r={radius * 1e3:g} mm", pose=pose, profile=Cylinder(radius), top=top
     )
@@ -342,6 +342,8 @@ def measure_edge_radius(
     -------
     EdgeRadiusResult
     """
+    edge = make_edge(radius, position=position, angle=angle)
+    rng = as_rng("rng", rng)
     chosen = imaging_sensor(sensor)
     if table is None:
         table = (
@@ -350,5 +352,4 @@ def measure_edge_radius(
             else build_edge_radius_table(sensor=chosen)
         )
     procedure = EdgeRadius(table)
-    edge = make_edge(radius, position=position, angle=angle)
     return procedure.run(_finger_over(chosen, edge, rng))

@@ -13,7 +13,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from taxel._validation import check_choice, check_finite
+from taxel._validation import check_choice, check_finite, check_pair
 from taxel.active._scene import ProfileObject
 from taxel.active._shapes import KeyBlank, RoundedPolygon
 from taxel.mechanics import BoxCorner, CanRim, Cylinder, FlatPunch, Indenter, Washer
@@ -108,8 +108,7 @@ def make_model(
     ('key blank', [0.1, -0.005])
     """
     check_choice("name", name, MODEL_NAMES)
-    x0 = check_finite("position", position[0])
-    y0 = check_finite("position", position[1])
+    x0, y0 = check_pair("position", position)
     angle = check_finite("angle", angle)
     factory, top, centre, _ = _MODELS[name]
     cosine, sine = math.cos(angle), math.sin(angle)

@@ -10,7 +10,14 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_choice, check_positive
+from taxel._validation import (
+    as_rng,
+    check_choice,
+    check_count,
+    check_finite,
+    check_pair,
+    check_positive,
+)
 from taxel.active._finger import SimulatedFinger
 from taxel.active._imaging import imaging_sensor
 from taxel.active._model_library import ModelLibrary
@@ -84,17 +91,16 @@ def build_model_library(
     models = [check_choice("models", name, MODEL_NAMES) for name in models]
     if len(set(models)) < 2:
         raise ValueError(f"`models` must name at least 2 models, got {models}")
-    if int(rotations) < 1:
-        raise ValueError(f"`rotations` must be >= 1, got {rotations}")
+    rotations = check_count("rotations", rotations)
     normal_force = check_positive("normal_force", normal_force)
     step = check_positive("step", step)
     position_error = check_positive("position_error", position_error, allow_zero=True)
+    generator = as_rng("rng", rng)
     chosen = imaging_sensor(sensor)
-    generator = None if rng is None else np.random.default_rng(rng)
     templates, labels = [], []
     for name in dict.fromkeys(models):
-        for k in range(int(rotations)):
-            angle = 2 * math.pi * k / int(rotations)
+        for k in range(rotations):
+            angle = 2 * math.pi * k / rotations
             # every other pose off-centre by most of the placement error, in turning directions
             offset = 0.8 * position_error * (k % 2)
             direction = k * _GOLDEN_ANGLE
@@ -155,6 +161,11 @@ def recognize_object(
     """
     check_choice("name", name, MODEL_NAMES)
     position_error = check_positive("position_error", position_error, allow_zero=True)
+    if position is not None:
+        position = check_pair("position", position)
+    if angle is not None:
+        angle = check_finite("angle", angle)
+    checked_rng = as_rng("rng", rng)
     chosen = imaging_sensor(sensor)
     if library is None:
         if isinstance(sensor, str):
@@ -162,12 +173,12 @@ def recognize_object(
         else:
             library = build_model_library(sensor=chosen)
     procedure = Recognition(library)
-    generator = np.random.default_rng(rng)
+    generator = checked_rng if checked_rng is not None else np.random.default_rng()
     if position is None:
         radius = position_error * math.sqrt(generator.uniform())
         direction = generator.uniform(0.0, 2 * math.pi)
         position = (radius * math.cos(direction), radius * math.sin(direction))
     if angle is None:
         angle = float(generator.uniform(0.0, 2 * math.pi))
-    noise = None if rng is None else generator
+    noise = None if checked_rng is None else generator
     return procedure.run(_finger(chosen, name, position, angle, noise))

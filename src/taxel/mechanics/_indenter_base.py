@@ -14,8 +14,8 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_finite
-from taxel.mechanics._operators import as_spacing
+from taxel._validation import as_finite_array, check_finite, check_pair
+from taxel.mechanics._operators import as_shape, as_spacing
 
 __all__ = ["Indenter", "grid_coordinates"]
 
@@ -32,7 +32,7 @@ def grid_coordinates(shape: Any, spacing: Any) -> tuple[np.ndarray, np.ndarray]:
     >>> x[0].tolist(), y[:, 0].tolist()
     ([-0.001, 0.0, 0.001], [-0.0005, 0.0005])
     """
-    rows, cols = (int(n) for n in shape)
+    rows, cols = as_shape(shape)
     dy, dx = as_spacing(spacing)
     x = (np.arange(cols) - (cols - 1) / 2) * dx
     y = (np.arange(rows) - (rows - 1) / 2) * dy
@@ -67,8 +67,13 @@ class Indenter(ABC):
         """
         x = as_finite_array("x", x)
         y = as_finite_array("y", y)
-        x0 = check_finite("position", position[0])
-        y0 = check_finite("position", position[1])
+        try:
+            np.broadcast_shapes(x.shape, y.shape)
+        except ValueError:
+            raise ValueError(
+                f"`x` and `y` must have matching shapes, got {x.shape} and {y.shape}"
+            ) from None
+        x0, y0 = check_pair("position", position)
         angle = check_finite("angle", angle)
         cosine, sine = np.cos(angle), np.sin(angle)
         u = cosine * (x - x0) + sine * (y - y0)

@@ -33,6 +33,8 @@ def as_frames(frames: Any, spec: ForwardModelSpec) -> tuple[np.ndarray, tuple[in
             f"got {array.shape}"
         )
     batch = array.shape[:-2]
+    if array.size == 0:
+        raise ValueError(f"`frame` must hold at least one frame, got shape {array.shape}")
     array = array.reshape(-1, *spec.shape)
     live = spec.live_taxels
     bad = ~np.isfinite(array) & live

@@ -58,8 +58,11 @@ def unwrap_retardation(
     True
     """
     values = as_finite_array("intensity", intensity)
-    if values.ndim == 0:
-        raise ValueError("`intensity` must be a path (samples along the last axis), got 0-D")
+    if values.ndim == 0 or values.shape[-1] == 0:
+        raise ValueError(
+            "`intensity` must be a path (samples along the last axis), "
+            f"got shape {values.shape}"
+        )
     check_choice("field", field, FIELDS)
     source_intensity = check_positive("source_intensity", source_intensity)
     tolerance = check_positive("tolerance", tolerance, allow_zero=True)
