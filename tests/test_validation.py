@@ -47,8 +47,8 @@ def test_other_bad_arrays(value, error, message):
         as_finite_array("x", value, ndim=1)
 
 
-@pytest.mark.parametrize("value", [True, np.bool_(False)])
-def test_a_bool_is_not_a_number(value):
+@pytest.mark.parametrize("value", [True, np.bool_(False), "5", b"5"])
+def test_a_bool_or_text_is_not_a_number(value):
     with pytest.raises(TypeError, match="`x` must be a real number, got"):
         check_finite("x", value)
 
@@ -87,6 +87,8 @@ def test_a_flag_must_be_a_bool(value):
 def test_an_instance_check_names_the_type():
     with pytest.raises(TypeError, match="`material` must be a float, got 'rubber'"):
         check_instance("material", "rubber", float)
+    with pytest.raises(TypeError, match="`error` must be an Exception, got None"):
+        check_instance("error", None, Exception)
 
 
 def test_rng_accepts_none_a_seed_or_a_generator():

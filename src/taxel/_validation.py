@@ -39,9 +39,10 @@ def _short(value: Any) -> str:
 def check_finite(name: str, value: Any) -> float:
     """Return `value` as a float, or raise naming `name` when it is not a finite number.
 
-    A bool is refused: ``True`` standing for 1 is almost always a slip.
+    A bool or a string is refused: ``True`` standing for 1, or text such as "5" read from
+    a file and never converted, is almost always a slip.
     """
-    if isinstance(value, bool | np.bool_):
+    if isinstance(value, bool | np.bool_ | str | bytes):
         raise TypeError(f"`{name}` must be a real number, got {value!r}")
     try:
         number = float(value)
@@ -158,7 +159,8 @@ def check_flag(name: str, value: Any) -> bool:
 def check_instance(name: str, value: Any, kind: type) -> None:
     """Raise TypeError naming `name` when `value` is not an instance of `kind`."""
     if not isinstance(value, kind):
-        raise TypeError(f"`{name}` must be a {kind.__name__}, got {_short(value)}")
+        article = "an" if kind.__name__[0] in "AEIOU" else "a"
+        raise TypeError(f"`{name}` must be {article} {kind.__name__}, got {_short(value)}")
 
 
 def as_rng(name: str, rng: Any) -> np.random.Generator | None:

@@ -196,6 +196,16 @@ def test_non_convergence_is_reported(sphere_heights):
         ({}, ValueError, "exactly one of `normal_force` and `indentation`"),
         ({"normal_force": 1.0, "indentation": 1e-4}, ValueError, "exactly one"),
         ({"normal_force": 1.0, "thickness": -1.0}, ValueError, "`thickness` must be > 0"),
+        ({"normal_force": 1.0, "periodic": "no"}, TypeError, "`periodic` must be True or False"),
+        ({"normal_force": 1.0, "max_iterations": np.nan}, ValueError, "`max_iterations` must"),
+        ({"normal_force": 1.0, "max_iterations": 2.7}, ValueError, "`max_iterations` must be a"),
+        ({"normal_force": 1.0, "max_iterations": "a"}, TypeError, "`max_iterations` must be a"),
+        (
+            {"normal_force": 1.0, "indenter_material": "steel"},
+            TypeError,
+            "`indenter_material` must be an ElasticMaterial, got 'steel'",
+        ),
+        ({"normal_force": 1.0, "initial": "x"}, TypeError, "`initial` must be a ContactResult"),
     ],
 )
 def test_bad_arguments(kwargs, error, match):
@@ -214,3 +224,41 @@ def test_bad_heights_and_shapes(sphere_result):
         solve_contact(np.zeros((8, 8)), 1e-3, COVER, normal_force=1.0, initial=sphere_result)
     with pytest.raises(ValueError, match="at least one finite value"):
         solve_contact(np.full((8, 8), np.inf), 1e-3, COVER, normal_force=1.0)
+
+
+@pytest.mark.parametrize("material", [None, "rubber"])
+def test_the_cover_must_be_a_material(material):
+    with pytest.raises(TypeError, match="`material` must be an ElasticMaterial, got"):
+        solve_contact(np.zeros((8, 8)), 1e-3, material, normal_force=1.0)
+    with pytest.raises(TypeError, match="`first` must be an ElasticMaterial, got"):
+        effective_modulus(material)
+    with pytest.raises(TypeError, match="`second` must be an ElasticMaterial, got 'x'"):
+        effective_modulus(COVER, "x")
+
+
+def test_heights_are_a_gap_and_cannot_be_negative(sphere_heights):
+    with pytest.raises(ValueError, match="`heights` must be >= 0 .*, got a minimum of -0.000999"):
+        solve_contact(sphere_heights - 1e-3, SPACING, COVER, normal_force=1.0)
+
+
+@pytest.mark.parametrize(
+    ("spacing", "error", "match"),
+    [
+        (1e-300, ValueError, "`spacing` must be >= 1e-09 m, got 1e-300"),
+        ("a", TypeError, "`spacing` must be a number or a"),
+        (None, TypeError, "`spacing` must be a number or a"),
+        (True, TypeError, "`spacing` must be a number or a"),
+    ],
+)
+def test_spacing_is_a_length_of_at_least_a_nanometre(spacing, error, match):
+    with pytest.raises(error, match=match):
+        solve_contact(np.zeros((8, 8)), spacing, COVER, normal_force=0.1)
+
+
+@pytest.mark.parametrize("shape", [(1, 1), (8, 1), (1, 8)])
+def test_a_single_row_or_column_of_cells_is_solved(shape):
+    result = solve_contact(np.zeros(shape), 1e-3, COVER, normal_force=0.1)
+    assert result.converged and result.normal_force == pytest.approx(0.1)
+    # a flat row pressed down all along: every cell carries load, symmetrically
+    assert np.all(result.pressure > 0)
+    assert np.allclose(result.pressure, result.pressure[::-1, ::-1], rtol=1e-6)

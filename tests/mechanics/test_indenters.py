@@ -202,3 +202,8 @@ def test_heights_of_mismatched_coordinates_are_refused():
     with pytest.raises(ValueError, match=r"`x` and `y` must have matching shapes, got \(3,\)"):
         Sphere(5e-3).heights(np.zeros(3), np.zeros(4))
     assert Sphere(5e-3).heights(np.zeros((1, 3)), np.zeros((4, 1))).shape == (4, 3)
+
+
+def test_a_bool_is_not_a_radius():
+    with pytest.raises(TypeError, match="`radius` must be a real number, got True"):
+        make_indenter("sphere", radius=True)

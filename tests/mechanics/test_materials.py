@@ -46,3 +46,5 @@ def test_bad_material_is_rejected(modulus, ratio, match):
 def test_non_numeric_modulus_is_a_type_error():
     with pytest.raises(TypeError, match="`youngs_modulus` must be a real number"):
         ElasticMaterial("soft", 0.3)
+    with pytest.raises(TypeError, match="`youngs_modulus` must be a real number, got True"):
+        ElasticMaterial(True, 0.3)

@@ -19,7 +19,13 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_positive, check_shape
+from taxel._validation import (
+    check_count,
+    check_flag,
+    check_instance,
+    check_positive,
+    check_shape,
+)
 from taxel.mechanics._compliance import cover_operator, gap_operator, window_to_grid
 from taxel.mechanics._materials import ElasticMaterial
 from taxel.mechanics._operators import ConvolutionOperator, as_spacing
@@ -211,8 +217,16 @@ def _check_heights(heights: Any) -> np.ndarray:
         raise ValueError(
             f"`heights` must not contain NaN or -inf, got {int(bad.sum())} such value(s)"
         )
-    if not np.isfinite(array).any():
+    finite = array[np.isfinite(array)]
+    if finite.size == 0:
         raise ValueError("`heights` must have at least one finite value (some material)")
+    # a gap cannot be negative: a negative minimum means the zero (first touch) is misplaced
+    lowest = float(finite.min())
+    if lowest < 0:
+        raise ValueError(
+            "`heights` must be >= 0 (0 at the indenter's lowest point), "
+            f"got a minimum of {lowest:g} m"
+        )
     return array
 
 
@@ -292,9 +306,13 @@ def solve_contact(
     if thickness is not None:
         thickness = check_positive("thickness", thickness)
     tolerance = check_positive("tolerance", tolerance)
-    if int(max_iterations) < 1:
-        raise ValueError(f"`max_iterations` must be >= 1, got {max_iterations}")
+    max_iterations = check_count("max_iterations", max_iterations)
+    periodic = check_flag("periodic", periodic)
+    check_instance("material", material, ElasticMaterial)
+    if indenter_material is not None:
+        check_instance("indenter_material", indenter_material, ElasticMaterial)
     if initial is not None:
+        check_instance("initial", initial, ContactResult)
         check_shape("initial.pressure", initial.pressure, heights.shape)
 
     shape = heights.shape
@@ -349,7 +367,7 @@ def solve_contact(
             force=normal_force,
             approach=indentation,
             tolerance=tolerance,
-            max_iterations=int(max_iterations) - iterations,
+            max_iterations=max_iterations - iterations,
         )
         iterations += loop.iterations
         total_pressure[:] = 0.0

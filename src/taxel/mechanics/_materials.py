@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from taxel._validation import check_positive, check_range
+from taxel._validation import check_instance, check_positive, check_range
 
 __all__ = ["ElasticMaterial", "effective_modulus"]
 
@@ -91,7 +91,9 @@ def effective_modulus(first: ElasticMaterial, second: ElasticMaterial | None = N
     >>> round(effective_modulus(cover, cover))
     666667
     """
+    check_instance("first", first, ElasticMaterial)
     compliance = 1.0 / first.plane_strain_modulus
     if second is not None:
+        check_instance("second", second, ElasticMaterial)
         compliance += 1.0 / second.plane_strain_modulus
     return 1.0 / compliance
