@@ -228,9 +228,9 @@ def test_bad_calibration_arguments(sensors):
     sensor = sensors["capacitive4x4"]
     with pytest.raises(ValueError, match="`pressures` must hold at least 4 increasing"):
         calibrate(sensor, pressures=[0.0, 2e4, 1e4, 3e4])
-    with pytest.raises(ValueError, match="`n_levels` must be an integer >= 4, got 2"):
+    with pytest.raises(ValueError, match="`n_levels` must be >= 4, got 2"):
         calibrate(sensor, n_levels=2)
-    with pytest.raises(ValueError, match="`repeats` must be a positive integer, got 0"):
+    with pytest.raises(ValueError, match="`repeats` must be >= 1, got 0"):
         calibrate(sensor, repeats=0)
     with pytest.raises(ValueError, match="`min_response` must lie in"):
         calibrate(sensor, min_response=1.5)
@@ -267,3 +267,14 @@ def test_noise_about_no_load_stays_zero_mean(sensors):
     assert abs(pressure.mean()) < 3 * noise / np.sqrt(pressure.size) + 20.0
     clipped = calibration.apply(frames, clip=True)
     assert clipped.mean() > 0.3 * noise  # clipping at 0 biases an unloaded sensor
+
+
+def test_counts_and_rng_of_a_calibration_are_checked(sensors):
+    sensor = sensors["capacitive4x4"]
+    with pytest.raises(ValueError, match="`n_levels` must be finite, got nan"):
+        calibrate(sensor, n_levels=np.nan)
+    with pytest.raises(ValueError, match="`repeats` must be a whole number, got 2.5"):
+        calibrate(sensor, repeats=2.5, rng=0)
+    for rng, error in (("x", TypeError), (1.5, TypeError), (True, TypeError), (-1, ValueError)):
+        with pytest.raises(error, match="`rng`"):
+            calibrate(sensor, rng=rng)

@@ -137,6 +137,10 @@ def test_dynamic_and_photoelastic_sensors_get_a_table():
 def test_bad_arguments():
     with pytest.raises(TypeError, match="`sensor` must be a TactileSensor"):
         harmon_table("vhdta128")
+    with pytest.raises(TypeError, match="`sensor` must be a TactileSensor, got 'resistive16'"):
+        reading_step("resistive16")
+    with pytest.raises(TypeError, match="`rng` must be None, a numpy.random.Generator"):
+        reading_step(make_sensor("capacitive4x4"), rng="x")
     with pytest.raises(ValueError, match="`dip` must lie in"):
         two_point_resolution(make_sensor("capacitive4x4"), dip=1.5)
     with pytest.raises(ValueError, match="photoelastic: its frames are fringes"):

@@ -179,3 +179,21 @@ def test_a_batch_of_frames_reads_as_each_frame():
     quantities = np.stack([np.zeros(sensor.shape), np.full(sensor.shape, 0.5)])
     expected = [sensor.mean_reading(quantity) for quantity in quantities]
     np.testing.assert_allclose(sensor.mean_reading(quantities), expected)
+
+
+@pytest.mark.parametrize(
+    ("changes", "error", "match"),
+    [
+        ({"indenter": "sphere"}, TypeError, "`indenter` must be an Indenter, got 'sphere'"),
+        ({"indenter": None}, TypeError, "`indenter` must be an Indenter, got None"),
+        ({"position": (0,)}, ValueError, r"`position` must be an \(x, y\) pair, got \(0,\)"),
+        ({"initial": 3}, TypeError, "`initial` must be a ContactResult, got 3"),
+        ({"rng": "x"}, TypeError, "`rng` must be None, a numpy.random.Generator or an int"),
+        ({"rng": -1}, ValueError, "`rng` seed must be >= 0, got -1"),
+        ({"rng": 1.5}, TypeError, "`rng` must be None"),
+    ],
+)
+def test_bad_press_arguments_name_the_parameter(changes, error, match):
+    arguments = {"indenter": make_indenter("sphere"), "normal_force": 1.0} | changes
+    with pytest.raises(error, match=match):
+        make_sensor("resistive16").press(**arguments)

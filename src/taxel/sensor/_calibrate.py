@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_positive, check_range
+from taxel._validation import as_finite_array, as_rng, check_count, check_positive, check_range
 from taxel.sensor._calibration import Calibration
 from taxel.sensor._fields import taxel_fields
 from taxel.sensor._monotone import isotonic_increasing
@@ -116,11 +116,10 @@ def calibrate(
     if n_levels is None:
         n_levels = sensor.calibration_levels
     levels = _levels(sensor, pressures, n_levels)
-    if isinstance(repeats, bool) or int(repeats) != repeats or repeats < 1:
-        raise ValueError(f"`repeats` must be a positive integer, got {repeats!r}")
+    repeats = check_count("repeats", repeats)
     min_response = check_range("min_response", min_response, 0.0, 1.0, high_inclusive=False)
-    count = int(repeats) if rng is not None else 1
-    generator = None if rng is None else np.random.default_rng(rng)
+    count = repeats if rng is not None else 1
+    generator = as_rng("rng", rng)
     means, lows, highs, spreads = [], [], [], []
     for level in levels:
         quantity = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, level)).quantity
@@ -172,9 +171,7 @@ def _felt_fraction(sensor: TactileSensor, shape: tuple[int, ...]) -> np.ndarray:
 
 def _levels(sensor: TactileSensor, pressures: Any, n_levels: int) -> np.ndarray:
     if pressures is None:
-        if isinstance(n_levels, bool) or int(n_levels) != n_levels or n_levels < 4:
-            raise ValueError(f"`n_levels` must be an integer >= 4, got {n_levels!r}")
-        return np.linspace(0.0, sensor.full_scale, int(n_levels))
+        return np.linspace(0.0, sensor.full_scale, check_count("n_levels", n_levels, minimum=4))
     levels = as_finite_array("pressures", pressures, ndim=1)
     if levels.size < 4 or levels[0] != 0 or np.any(np.diff(levels) <= 0):
         raise ValueError(

@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_range
+from taxel._validation import as_finite_array, as_rng, check_range
 from taxel.sensor._calibration import Calibration, check_calibration
 from taxel.sensor._sensor import TactileSensor
 
@@ -115,7 +115,7 @@ def calibration_error(
                 f"`pressures` must lie in [0, full_scale = {sensor.full_scale:g}] Pa, "
                 f"got {np.array2string(levels, precision=3, threshold=6)}"
             )
-    generator = None if rng is None else np.random.default_rng(rng)
+    generator = as_rng("rng", rng)
     worst, rms = [], []
     for level in levels:
         frame = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, level), rng=generator)

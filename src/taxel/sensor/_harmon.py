@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from taxel._validation import as_rng
 from taxel.sensor._calibrate import calibrate
 from taxel.sensor._calibration import Calibration, check_calibration
 from taxel.sensor._harmon_measures import (
@@ -196,7 +197,7 @@ def harmon_table(
     """
     if not isinstance(sensor, TactileSensor):
         raise TypeError(f"`sensor` must be a TactileSensor, got {sensor!r}")
-    generator = None if rng is None else np.random.default_rng(rng)
+    generator = as_rng("rng", rng)
     calibratable = not sensor.is_dynamic and sensor.quantity != "stress_difference"
     if calibration is None and calibratable:
         calibration = calibrate(sensor, rng=generator)

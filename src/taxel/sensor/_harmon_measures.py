@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from taxel._validation import as_rng, check_instance
 from taxel.sensor._calibration import Calibration
 from taxel.sensor._sensor import TactileSensor
 
@@ -83,13 +84,14 @@ def reading_step(sensor: TactileSensor, *, rng: Any = None) -> ReadingStep:
     >>> step.lsb, round(step.noise, 1), round(step.levels)  # 12 bits, noise about 1 level
     (1.0, 1.2, 2910)
     """
+    check_instance("sensor", sensor, TactileSensor)
+    generator = as_rng("rng", rng)
     rest = _plate(sensor, 0.0)
     full = _plate(sensor, sensor.full_scale)
     raw = np.asarray(sensor.read(rest))
     lsb = 1.0 if np.issubdtype(raw.dtype, np.integer) else 0.0
     noise = 0.0
-    if rng is not None:
-        generator = np.random.default_rng(rng)
+    if generator is not None:
         frames = np.stack(
             [np.asarray(sensor.read(rest, rng=generator), float) for _ in range(_NOISE_FRAMES)]
         )

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_positive, check_range
+from taxel._validation import as_rng, check_positive, check_range
 from taxel.sensor._calibration import Calibration, check_calibration
 from taxel.sensor._harmon_measures import sensed
 from taxel.sensor._sensor import TactileSensor
@@ -195,7 +195,7 @@ def two_point_resolution(
     plate = sensed(fine, np.full(grid.shape, sensor.full_scale))
     force = peak_fraction * float(np.abs(plate).max()) / float(single)
     rest = fine.mean_reading(sensed(fine, np.zeros(grid.shape)))
-    generator = None if rng is None else np.random.default_rng(rng)
+    generator = as_rng("rng", rng)
     separations, dips = [], []
     spacing = grid.spacing[1]
     for n in range(1, xs.size):

@@ -8,7 +8,7 @@ from typing import Any, cast
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_positive
+from taxel._validation import as_finite_array, as_rng, check_instance, check_positive
 from taxel.mechanics import (
     ContactResult,
     ElasticMaterial,
@@ -189,6 +189,8 @@ class TactileSensor:
         -------
         SensorFrame
         """
+        check_instance("indenter", indenter, Indenter)
+        as_rng("rng", rng)  # before the solve, not after it
         x, y = self.load_grid.coordinates()
         heights = indenter.heights(x, y, position=position, angle=angle)
         contact = solve_contact(
@@ -346,7 +348,7 @@ class TactileSensor:
     def _read(
         self, quantity: np.ndarray, rng: Any, temperature: float | None
     ) -> tuple[np.ndarray, np.ndarray]:
-        generator = None if rng is None else np.random.default_rng(rng)
+        generator = as_rng("rng", rng)
         signal = self._respond(quantity, generator)
         raw = self.readout_chain.apply(signal, rng=generator, temperature=temperature)
         return np.asarray(signal, dtype=float), np.asarray(raw)
@@ -419,7 +421,7 @@ class TactileSensor:
             signal = np.moveaxis(
                 np.asarray([self._respond(frame) for frame in np.moveaxis(moved, -1, 0)]), 0, -1
             )
-        generator = None if rng is None else np.random.default_rng(rng)
+        generator = as_rng("rng", rng)
         if readout.drift_rate:
             signal = add_drift(
                 signal, step, rate=readout.drift_rate * self.readout_chain.span, rng=generator
