@@ -130,3 +130,39 @@ def test_bad_commands_leave_the_finger_retracted(table):
     # a table from another sensor
     with pytest.raises(ValueError, match="was made on sensor 'other'"):
         EdgeRadius(_copy(table, sensor="other")).run(finger)
+
+
+def test_an_edge_sharper_than_the_load_grid_resolves_is_refused_naming_radius(table):
+    # vhdta128's load grid is 0.258 mm apart: a 0.1 mm edge's crest falls between its points
+    with pytest.raises(ValueError, match=r"`radius` must be > half the load grid's spacing"):
+        measure_edge_radius(1e-4, table=table)
+    with pytest.raises(ValueError, match=r"`radii` must be > half the load grid's spacing"):
+        build_edge_radius_table([1e-4, 2e-3], sensor="resistive16", orientations=2)
+    # the finger alone says it found nothing, and why that can happen
+    finger = SimulatedFinger(
+        make_sensor("vhdta128"), [make_edge(1e-4)], make_pose(DOWN, [0, 0, 0.03])
+    )
+    with pytest.raises(ValueError, match=r"load grid \(0.258 mm apart; a thinner object"):
+        finger.press(normal_force=5.0)
+
+
+@pytest.mark.parametrize("sensor", ["harmon10x20", "capacitive4x4"])
+def test_a_sensor_too_narrow_for_a_cross_section_is_refused_naming_it(sensor):
+    with pytest.raises(ValueError, match="`sensor` is too small for an edge cross-section"):
+        measure_edge_radius(2e-3, sensor=sensor)
+    with pytest.raises(ValueError, match="`image` is too small for an edge cross-section"):
+        edge_cross_section(np.zeros((10, 20)), 1.5e-3, normal_force=12.0)
+
+
+def test_a_procedure_is_given_a_table_and_a_probe(table):
+    with pytest.raises(
+        TypeError, match="`table` must be an EdgeRadiusTable or its file, got None"
+    ):
+        EdgeRadius(None)
+    with pytest.raises(TypeError, match="`probe` must be a Probe, got 'finger'"):
+        EdgeRadius(table).run("finger")
+
+
+def test_table_counts_are_whole_numbers():
+    with pytest.raises(ValueError, match="`orientations` must be a whole number, got 2.5"):
+        build_edge_radius_table([2e-3, 4e-3], orientations=2.5)

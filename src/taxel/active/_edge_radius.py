@@ -17,8 +17,15 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_rng, check_finite, check_pair, check_positive
-from taxel.active._edge_section import EdgeCrossSection, edge_cross_section
+from taxel._validation import (
+    as_rng,
+    check_count,
+    check_finite,
+    check_instance,
+    check_pair,
+    check_positive,
+)
+from taxel.active._edge_section import EdgeCrossSection, check_section_fits, edge_cross_section
 from taxel.active._edge_table import EdgeRadiusTable, fit_edge_radius_table
 from taxel.active._finger import SimulatedFinger
 from taxel.active._imaging import imaging_sensor
@@ -83,6 +90,21 @@ def make_edge(
     return ProfileObject(
         name=f"edge r={radius * 1e3:g} mm", pose=pose, profile=Cylinder(radius), top=top
     )
+
+
+def _check_resolved(name: str, radius: float, sensor: TactileSensor) -> None:
+    """Raise unless an edge of `radius` is wider than a cell of the sensor's load grid.
+
+    The edge is a cylinder's crest, 2 `radius` wide seen from above: a narrower crest can
+    fall between the grid's cell centres, and the contact model does not see it at all.
+    """
+    spacing = max(sensor.load_grid.spacing)
+    if radius <= spacing / 2:
+        raise ValueError(
+            f"`{name}` must be > half the load grid's spacing ({spacing / 2 * 1e3:.3g} mm) "
+            f"of {sensor.name}, got {radius * 1e3:.3g} mm: a sharper edge falls between "
+            "the grid's points"
+        )
 
 
 def _finger_over(sensor: TactileSensor, edge: ProfileObject, rng: Any) -> SimulatedFinger:
@@ -176,6 +198,8 @@ class EdgeRadius:
 
     def __init__(self, table: EdgeRadiusTable | str | os.PathLike[str]) -> None:
         if not isinstance(table, EdgeRadiusTable):
+            if not isinstance(table, str | os.PathLike):
+                raise TypeError(f"`table` must be an EdgeRadiusTable or its file, got {table!r}")
             table = EdgeRadiusTable.load(table)
         self.table = table
 
@@ -213,6 +237,7 @@ class EdgeRadius:
 
     def run(self, probe: Probe) -> EdgeRadiusResult:
         """Press, measure the cross-sections and look the radius up in the table."""
+        check_instance("probe", probe, Probe)
         sections, steps = self.measure(probe)
         radius, uncertainty, residual = self.table.estimate(sections)
         distances = self.table.distances(sections)
@@ -280,10 +305,12 @@ def build_edge_radius_table(
     if len(set(radii)) < 2:
         raise ValueError(f"`radii` must hold at least 2 distinct radii, got {radii}")
     forces = [check_positive("forces", force) for force in forces]
-    if int(orientations) < 2:
-        raise ValueError(f"`orientations` must be >= 2, got {orientations}")
+    orientations = check_count("orientations", orientations, minimum=2)
+    generator = as_rng("rng", rng)
     chosen = imaging_sensor(sensor)
-    generator = np.random.default_rng(rng) if rng is not None else None
+    check_section_fits("sensor", chosen.shape, chosen.taxel_pitch)
+    for radius in radii:
+        _check_resolved("radii", radius, chosen)
     offsets = np.random.default_rng(rng if rng is not None else 0)
     procedure_forces = sorted(forces)
     pairs, pair_radii = [], []
@@ -345,6 +372,8 @@ def measure_edge_radius(
     edge = make_edge(radius, position=position, angle=angle)
     rng = as_rng("rng", rng)
     chosen = imaging_sensor(sensor)
+    check_section_fits("sensor", chosen.shape, chosen.taxel_pitch)
+    _check_resolved("radius", float(radius), chosen)
     if table is None:
         table = (
             _default_table(sensor, DEFAULT_FORCES)

@@ -19,7 +19,7 @@ from scipy import ndimage, stats
 from taxel._validation import as_finite_array, check_positive
 from taxel.features import detect_edges, fit_circle, fit_line, pitch_pair
 
-__all__ = ["SECTION_DESCRIPTORS", "EdgeCrossSection", "edge_cross_section"]
+__all__ = ["SECTION_DESCRIPTORS", "EdgeCrossSection", "check_section_fits", "edge_cross_section"]
 
 # what the table compares, in this order (widths and areas in m, the peak in image units)
 SECTION_DESCRIPTORS: tuple[str, ...] = (
@@ -166,6 +166,24 @@ def _arc_radius(positions: np.ndarray, profile: np.ndarray, peak: float) -> floa
     return float(fit.radius_m) if math.isfinite(fit.radius_m) else 0.0
 
 
+def check_section_fits(name: str, shape: tuple[int, int], pitch: tuple[float, float]) -> None:
+    """Raise naming `name` when an image of `shape` cannot hold a whole cross-section.
+
+    A cross-section is sampled 7 mm either side of the edge and kept 1.5 taxels clear of the
+    image's border; an array narrower than that in either direction cannot show one along
+    every orientation.
+    """
+    rows, cols = shape
+    usable = min((rows - 1 - 2 * _MARGIN) * pitch[0], (cols - 1 - 2 * _MARGIN) * pitch[1])
+    if usable < 2 * _HALF_SPAN:
+        raise ValueError(
+            f"`{name}` is too small for an edge cross-section: {rows} x {cols} taxels at "
+            f"{pitch[0] * 1e3:g} x {pitch[1] * 1e3:g} mm leave {max(usable, 0.0) * 1e3:.1f} mm "
+            f"clear of the border across the edge, and the section needs "
+            f"{2 * _HALF_SPAN * 1e3:g} mm"
+        )
+
+
 def _centres(values: np.ndarray, across: np.ndarray, baseline: float) -> np.ndarray:
     """Centre of the part of each sampled line above a quarter of the image's contrast."""
     signal = values - baseline
@@ -232,6 +250,7 @@ def edge_cross_section(
     normal_force = check_positive("normal_force", normal_force)
     pitch = pitch_pair(sensor_or_pitch)
     rows, cols = array.shape
+    check_section_fits("image", (rows, cols), pitch)
     edges = detect_edges(array, pitch)
     if edges.points_m.shape[0] < 10:
         raise ValueError(
@@ -244,6 +263,8 @@ def edge_cross_section(
     baseline = float(np.percentile(ndimage.uniform_filter(array, 3), 10))
     for _ in range(_REFINEMENTS):
         values, along = _sample(array, pitch, angle, offset, across)
+        if values.shape[0] == 0:  # the line runs too near the border to sample
+            break
         centres = _centres(values, across, baseline)
         good = np.isfinite(centres)
         if np.count_nonzero(good) < 10:
