@@ -167,3 +167,32 @@ def test_a_press_beyond_half_the_object_s_height_is_refused(calibration):
             youngs_modulus=1e3,
             poisson_ratio=0.4,
         )
+
+
+@pytest.mark.parametrize("forces", [(12.0,), (12.0, 39.0, 50.0), 12.0, "12"])
+def test_the_presses_are_a_light_and_a_firm_force(calibration, forces):
+    with pytest.raises(ValueError, match=r"`forces` must be a \(light, firm\) pair"):
+        measure_deformation("rubber ball", forces=forces, calibration=calibration)
+
+
+def test_a_procedure_is_given_its_calibration_a_probe_and_a_table_height(calibration):
+    with pytest.raises(TypeError, match="`calibration` must be a PadCalibration or its file"):
+        Deformation(3)
+    with pytest.raises(ValueError, match="`table_height` must be finite, got nan"):
+        Deformation(calibration, table_height=np.nan)
+    with pytest.raises(TypeError, match="`probe` must be a Probe, got 'finger'"):
+        Deformation(calibration).run("finger")
+
+
+@pytest.mark.parametrize(
+    ("changes", "match"),
+    [
+        ({"forces": (0.5,)}, r"`forces` must hold at least 3 distinct forces"),
+        ({"forces": (0.5, 12.0, 12.0)}, r"`forces` must hold at least 3 distinct forces"),
+        ({"radii": ()}, r"`radii` must hold at least 2 distinct radii, got \[\]"),
+        ({"radii": 4e-3}, r"`radii` must be a sequence of numbers, got 0.004"),
+    ],
+)
+def test_a_pad_calibration_needs_the_three_presses_and_small_references(changes, match):
+    with pytest.raises(ValueError, match=match):
+        calibrate_pad("resistive16", **changes)

@@ -141,3 +141,40 @@ def test_slide_over_holes_warm_starts_from_material_only(sensor):
     readings = finger.slide(path, speed=0.08, normal_force=3.0)
     assert all(r.normal_force == pytest.approx(3.0) for r in readings)
     assert all(r.frame.contact.converged for r in readings)
+
+
+def test_a_finger_takes_a_sensor_or_a_preset_name_and_a_list_of_objects(sensor):
+    ball = make_ball("ball", 6.25e-3)
+    start = make_pose(DOWN, [0.0, 0.0, 0.02])
+    by_name = SimulatedFinger("resistive16", [ball], start)
+    assert by_name.sensor.name == sensor.name == "resistive16"
+    assert by_name.press(normal_force=2.0).normal_force == pytest.approx(2.0)
+    with pytest.raises(TypeError, match="`sensor` must be a TactileSensor or a preset name"):
+        SimulatedFinger(None, [ball], start)
+    with pytest.raises(TypeError, match="`scene` must be a sequence of SceneObject items"):
+        SimulatedFinger(sensor, ball, start)
+    with pytest.raises(ValueError, match="`scene` must hold at least one object"):
+        SimulatedFinger(sensor, [], start)
+    with pytest.raises(TypeError, match="`rng` must be None, a numpy.random.Generator"):
+        SimulatedFinger(sensor, [ball], start, rng="x")
+    with pytest.raises(TypeError, match="`normal_force` must be a real number, got '5'"):
+        by_name.press(normal_force="5")
+
+
+@pytest.mark.parametrize(
+    "build", [lambda: make_ball("b", 6e-3, material="x"), lambda: Box("b", material="x")]
+)
+def test_an_object_s_material_must_be_an_elastic_material(build):
+    with pytest.raises(TypeError, match="`material` must be an ElasticMaterial, got 'x'"):
+        build()
+
+
+def test_a_press_at_exactly_the_finger_s_limit_is_not_refused_for_rounding():
+    # capacitive4x4's limit is 5 N; the solved force can come back 1 ulp above it
+    sensor = make_sensor("capacitive4x4")
+    ball = make_ball("ball", 20e-3)
+    finger = SimulatedFinger(sensor, [ball], make_pose(DOWN, [0.0, 0.0, 0.045]))
+    for x in np.linspace(-2e-3, 2e-3, 5):
+        finger.move_to(make_pose(DOWN, [x, 0.0, 0.045]))
+        assert finger.press(normal_force=finger.max_force).normal_force == pytest.approx(5.0)
+        finger.retract()

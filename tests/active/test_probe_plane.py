@@ -170,6 +170,12 @@ def test_bad_commands_raise_and_leave_the_finger_safe(sensor, calibration):
         probe_plane(finger, poses, normal_force=-1.0)
     with pytest.raises(ValueError, match="piezo8x8"):
         calibrate_contact_points(make_sensor("piezo8x8"))
+    with pytest.raises(TypeError, match="`probe` must be a Probe, got 'finger'"):
+        probe_plane("finger", poses)
+    with pytest.raises(ValueError, match="`n_levels` must be a whole number, got 2.5"):
+        calibrate_contact_points(sensor, n_levels=2.5)
+    with pytest.raises(TypeError, match="`rng` must be None, a numpy.random.Generator"):
+        calibrate_contact_points(sensor, rng="x")
     with pytest.raises(ValueError, match="`n_probes` must be an integer >= 3, got 2"):
         plane_probing_trial(n_probes=2)
     with pytest.raises(ValueError, match="`sensor` must be one of"):
@@ -183,3 +189,20 @@ def test_corner_guess_off_the_box_raises():
     finger = SimulatedFinger(make_sensor("resistive16"), [box], make_pose(translation=[0, 0, 0.2]))
     with pytest.raises(ValueError, match="face 1 probe 1 at .* mm: no object within"):
         locate_corner(finger, guess)
+
+
+@pytest.mark.parametrize(
+    ("seed", "error", "match"),
+    [("x", TypeError, "`seed` must be a real number"), (-1, ValueError, "`seed` must be >= 0")],
+)
+def test_a_trial_seed_is_a_whole_number_at_least_zero(seed, error, match):
+    with pytest.raises(error, match=match):
+        plane_probing_trial(seed=seed)
+    with pytest.raises(error, match=match):
+        corner_probing_trial(seed=seed)
+
+
+def test_a_corner_is_located_with_the_smallest_preset_at_its_force_limit():
+    # capacitive4x4's finger is limited to exactly the 5 N the probing presses with
+    trial = corner_probing_trial("capacitive4x4", seed=0)
+    assert trial.corner_error < 0.1e-3

@@ -103,6 +103,12 @@ def test_bad_commands_leave_the_finger_at_its_start(library):
     assert np.array_equal(finger.pose, start)
     with pytest.raises(ValueError, match="`name` must be one of washer"):
         recognize_object("spoon", library=library)
+    with pytest.raises(TypeError, match="`library` must be a ModelLibrary or its file, got 3"):
+        Recognition(3)
+    with pytest.raises(TypeError, match="`probe` must be a Probe, got 'finger'"):
+        Recognition(library).run("finger")
+    with pytest.raises(ValueError, match="`rotations` must be a whole number, got 2.5"):
+        build_model_library(["washer", "pen"], rotations=2.5)
     with pytest.raises(ValueError, match="`models` must name at least 2 models"):
         build_model_library(["washer"])
     with pytest.raises(ValueError, match="`position_error` must be >= 0, got -1"):

@@ -229,6 +229,8 @@ def test_bad_inputs_raise():
         detect_slip(np.zeros((60, 4, 4)), np.zeros((50, 2, 2)), frame_rate=1000.0)
     with pytest.raises(ValueError, match="`kind` must be one of slip, hold, steady"):
         random_slip_scenario("drop", 0)
+    with pytest.raises(TypeError, match="`rng` must be None, a numpy.random.Generator"):
+        random_slip_scenario("slip", "x")
 
 
 def test_restore_charge_undoes_the_amplifier_leak():

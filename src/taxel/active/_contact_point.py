@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_positive
+from taxel._validation import as_finite_array, as_rng, check_count, check_positive
 from taxel.mechanics import (
     ConvolutionOperator,
     depth_strain_operator,
@@ -98,7 +98,7 @@ def calibrate_contact_points(
     n_frames : int, default 8
         Noisy frames averaged per level.
     rng : numpy.random.Generator or int, default 0
-        The calibration's frame noise.
+        The calibration's frame noise (None: noise-free frames).
 
     Returns
     -------
@@ -115,19 +115,17 @@ def calibrate_contact_points(
     True
     """
     _check_static(sensor)
-    if int(n_levels) < 2:
-        raise ValueError(f"`n_levels` must be >= 2, got {n_levels!r}")
-    if int(n_frames) < 1:
-        raise ValueError(f"`n_frames` must be >= 1, got {n_frames!r}")
-    generator = np.random.default_rng(rng)
-    levels = np.linspace(0.0, sensor.full_scale, int(n_levels))
+    n_levels = check_count("n_levels", n_levels, minimum=2)
+    n_frames = check_count("n_frames", n_frames)
+    generator = as_rng("rng", rng)
+    levels = np.linspace(0.0, sensor.full_scale, n_levels)
     shape = sensor.load_grid.shape
     raw = np.array(
         [
             np.mean(
                 [
                     sensor.frame_from_pressure(np.full(shape, level), rng=generator).raw
-                    for _ in range(int(n_frames))
+                    for _ in range(n_frames)
                 ],
                 axis=0,
             )

@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_positive
+from taxel._validation import check_finite, check_instance, check_positive
 from taxel.active._deformable_objects import make_deformation_object, top_height
 from taxel.active._finger import SimulatedFinger
 from taxel.active._imaging import imaging_sensor
@@ -165,6 +165,10 @@ class Deformation:
         self, calibration: PadCalibration | str | os.PathLike[str], *, table_height: float = 0.0
     ) -> None:
         if not isinstance(calibration, PadCalibration):
+            if not isinstance(calibration, str | os.PathLike):
+                raise TypeError(
+                    f"`calibration` must be a PadCalibration or its file, got {calibration!r}"
+                )
             calibration = PadCalibration.load(calibration)
         if calibration.forces.size < 3:
             raise ValueError(
@@ -172,7 +176,7 @@ class Deformation:
                 f"{calibration.forces.tolist()}"
             )
         self.calibration = calibration
-        self.table_height = float(table_height)
+        self.table_height = check_finite("table_height", table_height)
 
     def _press(
         self, probe: Probe, force: float, *, touch: bool
@@ -194,6 +198,7 @@ class Deformation:
 
     def run(self, probe: Probe) -> DeformationResult:
         """Touch, press lightly and firmly, and integrate force, travel and images."""
+        check_instance("probe", probe, Probe)
         sensor = probe.sensor
         if self.calibration.sensor and sensor.name != self.calibration.sensor:
             raise ValueError(
@@ -341,6 +346,8 @@ def measure_deformation(
     (True, 53)
     """
     chosen = imaging_sensor(sensor)
+    if isinstance(forces, str) or np.ndim(forces) != 1 or len(forces) != 2:
+        raise ValueError(f"`forces` must be a (light, firm) pair of forces [N], got {forces!r}")
     light, firm = (check_positive("forces", force) for force in forces)
     touch = check_positive("touch_force", touch_force)
     if not touch < light < firm:

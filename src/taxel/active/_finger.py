@@ -2,18 +2,18 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_positive
+from taxel._validation import as_finite_array, as_rng, check_positive
 from taxel.active._probe import ProbeReading
 from taxel.active._scene import SceneObject
 from taxel.frames import as_pose, transform_directions, transform_points
 from taxel.mechanics import ContactResult, solve_contact
-from taxel.sensor import TactileSensor
+from taxel.sensor import TactileSensor, as_sensor
 
 __all__ = ["SimulatedFinger"]
 
@@ -28,10 +28,10 @@ class SimulatedFinger:
 
     Parameters
     ----------
-    sensor : TactileSensor
-        The sensor on the fingertip.
+    sensor : TactileSensor or str
+        The sensor on the fingertip, or a preset name (`taxel.sensor.PRESET_NAMES`).
     scene : sequence of SceneObject
-        The objects within reach.
+        The objects within reach (at least one).
     pose : array_like, shape (4, 4)
         Initial approach pose T_BS of the sensor (not touching anything).
     max_force : float, optional
@@ -68,8 +68,12 @@ class SimulatedFinger:
         reach: float = 0.05,
         rng: Any = None,
     ) -> None:
-        self._sensor = sensor
+        self._sensor = sensor = as_sensor(sensor)
+        if isinstance(scene, SceneObject | str) or not isinstance(scene, Iterable):
+            raise TypeError(f"`scene` must be a sequence of SceneObject items, got {scene!r}")
         self._scene = tuple(scene)
+        if not self._scene:
+            raise ValueError("`scene` must hold at least one object, got an empty sequence")
         for item in self._scene:
             if not isinstance(item, SceneObject):
                 raise TypeError(f"`scene` must hold SceneObject items, got {item!r}")
@@ -77,7 +81,7 @@ class SimulatedFinger:
             max_force = sensor.full_scale * sensor.geometry.active_area / 4
         self.max_force = check_positive("max_force", max_force)
         self.reach = check_positive("reach", reach)
-        self._rng = None if rng is None else np.random.default_rng(rng)
+        self._rng = as_rng("rng", rng)
         self._pose = np.eye(4)
         self._last: ContactResult | None = None
         self._time = 0.0
@@ -113,20 +117,22 @@ class SimulatedFinger:
         if (normal_force is None) == (depth is None):
             raise ValueError("give exactly one of `normal_force` and `depth`")
         if normal_force is not None:
-            check_positive("normal_force", normal_force)
+            normal_force = check_positive("normal_force", normal_force)
             if normal_force > self.max_force:
                 raise ValueError(
                     f"`normal_force` must be <= the finger's limit {self.max_force:g} N, "
                     f"got {normal_force:g}; the finger did not move"
                 )
         else:
-            check_positive("depth", depth)
+            depth = check_positive("depth", depth)
         per_object = self._object_distances(self._pose)
         distances = np.min(per_object, axis=0)
         if not np.isfinite(distances).any() or np.nanmin(distances) > self.reach:
+            spacing = max(self._sensor.load_grid.spacing)
             raise ValueError(
                 f"no object within the finger's reach ({self.reach * 1e3:g} mm) along the "
-                "sensor normal; the finger did not move"
+                f"sensor normal at any point of its load grid ({spacing * 1e3:.3g} mm apart; "
+                "a thinner object can fall between them); the finger did not move"
             )
         first_touch = float(np.nanmin(distances))
         nearest = self._scene[int(np.argmin([np.min(each) for each in per_object]))]
@@ -151,7 +157,8 @@ class SimulatedFinger:
             thickness=self._sensor.cover.thickness,
             initial=initial,
         )
-        if contact.normal_force > self.max_force:
+        # a force-controlled press was checked above (its result may differ by rounding)
+        if depth is not None and contact.normal_force > self.max_force:
             raise ValueError(
                 f"`depth` {depth:g} m needs {contact.normal_force:.3g} N, beyond the finger's "
                 f"limit {self.max_force:g} N; the finger did not move"

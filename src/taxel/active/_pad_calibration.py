@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 from scipy import ndimage
 
-from taxel._validation import as_finite_array, check_positive
+from taxel._validation import as_finite_array, as_rng, check_positive
 from taxel.active._deformable_objects import make_block
 from taxel.active._finger import SimulatedFinger
 from taxel.active._imaging import imaging_sensor
@@ -49,6 +49,13 @@ REFERENCE_RADII: tuple[float, ...] = (2e-3, 4e-3, 8e-3, 16e-3, 32e-3, 64e-3)
 REFERENCE_CUBES: tuple[float, ...] = (20e-3, 28e-3)
 _DOWN = np.diag([1.0, -1.0, -1.0])
 _STANDOFF = 5e-3
+
+
+def _sequence(name: str, values: Any) -> list[Any]:
+    """`values` as a list, or raise naming `name` when it is not a sequence of numbers."""
+    if isinstance(values, str) or np.ndim(values) != 1:
+        raise ValueError(f"`{name}` must be a sequence of numbers, got {values!r}")
+    return list(values)
 
 
 def core_area(image: Any, sensor_or_pitch: Any) -> float:
@@ -193,9 +200,11 @@ def calibrate_pad(
     sensor : str or TactileSensor, default "vhdta128"
         The sensor (preset name or sensor).
     forces : sequence of float, default (0.5, 12, 39)
-        The forces the deformation procedure will press with [N].
+        The forces the deformation procedure will press with [N]: at least three distinct
+        ones (its touch, light and firm press).
     radii : sequence of float, default `REFERENCE_RADII`
-        Radii of the rigid reference balls [m]; rigid cubes of 20 and 28 mm are added.
+        Radii of the rigid reference balls [m], at least two distinct ones (the small
+        imprints); rigid cubes of 20 and 28 mm are added.
     rng : numpy.random.Generator or int, optional
         Noise of the frames (default seed 0; None: noise-free).
 
@@ -209,10 +218,17 @@ def calibrate_pad(
     it, so the pad's compression is the travel minus 5 mm (a rigid object does not deform).
     The imprint is measured by `core_area`, as the procedure measures it.
     """
+    forces = sorted({check_positive("forces", force) for force in _sequence("forces", forces)})
+    if len(forces) < 3:
+        raise ValueError(
+            f"`forces` must hold at least 3 distinct forces (touch, light, firm), got {forces}"
+        )
+    radii = sorted({check_positive("radii", radius) for radius in _sequence("radii", radii)})
+    if len(radii) < 2:
+        raise ValueError(f"`radii` must hold at least 2 distinct radii, got {radii}")
+    generator = as_rng("rng", rng)
     chosen = imaging_sensor(sensor)
-    forces = sorted(check_positive("forces", force) for force in forces)
-    generator = None if rng is None else np.random.default_rng(rng)
-    references = _references([check_positive("radii", radius) for radius in radii])
+    references = _references(radii)
     areas = np.zeros((len(forces), len(references)))
     compressions = np.zeros_like(areas)
     for j, reference in enumerate(references):

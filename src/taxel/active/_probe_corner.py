@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_positive
+from taxel._validation import check_instance, check_positive
 from taxel.active._contact_point import ContactPointCalibration
 from taxel.active._probe import Probe
 from taxel.active._probe_plane import (
@@ -207,6 +207,7 @@ class CornerProbing:
             A bad guess; a probe that finds no face within the finger's reach (the finger
             is retracted and the message names the face and probe).
         """
+        check_instance("probe", probe, Probe)
         guess = as_pose(guess, name="guess")
         calibration = self.calibration or default_calibration(probe.sensor)
         extent = probe.sensor.geometry.extent

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_positive
+from taxel._validation import as_finite_array, check_instance, check_positive
 from taxel.active._contact_point import (
     ContactPoint,
     ContactPointCalibration,
@@ -203,6 +203,7 @@ class PlaneProbing:
             finger finds no surface, or a force beyond its limit (the finger is retracted
             and the message names the probe).
         """
+        check_instance("probe", probe, Probe)
         poses = check_poses(poses)
         calibration = self.calibration or default_calibration(probe.sensor)
         points, normals, compressions, steps = [], [], [], []

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from taxel._validation import check_positive, check_range
+from taxel._validation import check_count, check_positive, check_range
 from taxel.active._finger import SimulatedFinger
 from taxel.active._imaging import imaging_sensor
 from taxel.active._probe_corner import CornerEstimate, CornerProbing, box_corner_frame
@@ -135,6 +135,7 @@ def plane_probing_trial(
         material = probe_sensor.cover.material
         wrong = replace(material, youngs_modulus=material.youngs_modulus * (1 + model_error))
         model = replace(probe_sensor, cover=replace(probe_sensor.cover, material=wrong))
+    seed = check_count("seed", seed, minimum=0)
     rng = np.random.default_rng(seed)
     orientation = _tilt(rng, face_tilt) * Rotation.from_euler("z", rng.uniform(0, 2 * np.pi))
     box = Box("box", size=size, pose=make_pose(orientation))
@@ -244,6 +245,7 @@ def corner_probing_trial(
     probe_sensor = imaging_sensor(sensor)
     check_positive("guess_error", guess_error, allow_zero=True)
     check_range("guess_angle", guess_angle, 0.0, np.radians(20.0))
+    seed = check_count("seed", seed, minimum=0)
     rng = np.random.default_rng(seed)
     heading = Rotation.from_euler("z", rng.uniform(0.0, 2 * np.pi))
     box = Box("box", size=size, pose=make_pose(heading, [*rng.uniform(-0.05, 0.05, 2), 0.0]))

@@ -11,6 +11,7 @@ touched the same way at canonical poses, and the models are ranked.
 from __future__ import annotations
 
 import math
+import os
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -18,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_positive
+from taxel._validation import check_instance, check_positive
 from taxel.active._model_library import ModelLibrary
 from taxel.active._probe import Probe
 from taxel.active._procedure import ProcedureStep, step_from_reading
@@ -181,11 +182,14 @@ class Recognition:
 
     def __init__(self, library: ModelLibrary | str | Any) -> None:
         if not isinstance(library, ModelLibrary):
+            if not isinstance(library, str | os.PathLike):
+                raise TypeError(f"`library` must be a ModelLibrary or its file, got {library!r}")
             library = ModelLibrary.load(library)
         self.library = library
 
     def run(self, probe: Probe) -> RecognitionResult:
         """Explore the object and rank the models."""
+        check_instance("probe", probe, Probe)
         library = self.library
         if library.sensor and probe.sensor.name != library.sensor:
             raise ValueError(

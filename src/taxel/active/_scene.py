@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_positive
+from taxel._validation import check_instance, check_positive
 from taxel.frames import as_pose, invert_pose, transform_directions, transform_points
 from taxel.mechanics import ElasticMaterial, Indenter, Sphere, effective_modulus, hertz_sphere
 
@@ -48,6 +48,8 @@ class SceneObject(ABC):
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "pose", as_pose(self.pose, name="pose"))
+        if self.material is not None:
+            check_instance("material", self.material, ElasticMaterial)
 
     @abstractmethod
     def local_distances(self, origins: np.ndarray, direction: np.ndarray) -> np.ndarray:

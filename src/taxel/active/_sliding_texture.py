@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 from scipy import ndimage
 
-from taxel._validation import as_finite_array, check_positive, check_range
+from taxel._validation import as_finite_array, check_instance, check_positive, check_range
 from taxel.active._probe import Probe
 from taxel.active._procedure import ProcedureStep
 from taxel.active._texture_signature import TextureSignature, texture_signature
@@ -215,6 +215,7 @@ class TextureSliding:
         -------
         TextureSlide
         """
+        check_instance("probe", probe, Probe)
         speed = check_positive("speed", speed)
         direction = as_finite_array("direction", direction, ndim=1)
         if direction.shape != (3,) or not np.linalg.norm(direction) > 0:

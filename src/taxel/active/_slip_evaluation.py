@@ -17,7 +17,7 @@ from typing import Any, cast
 
 import numpy as np
 
-from taxel._validation import check_range
+from taxel._validation import check_count, check_range
 from taxel.active._slip import SlipDetection, SlipDetector
 from taxel.active._slip_simulation import (
     SlipSequence,
@@ -41,7 +41,7 @@ def slip_trials(
     n_slip: int = 40, n_hold: int = 20, n_steady: int = 20, *, seed: int = 0
 ) -> list[SlipSequence]:
     """Simulate random slip, hold-only and steady-sliding trials (`random_slip_scenario`)."""
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(check_count("seed", seed, minimum=0))
     counts = {"slip": n_slip, "hold": n_hold, "steady": n_steady}
     for name, count in counts.items():
         if int(count) != count or count < 0:

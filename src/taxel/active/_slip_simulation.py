@@ -48,6 +48,7 @@ from scipy import signal
 
 from taxel._validation import (
     as_finite_array,
+    as_rng,
     check_choice,
     check_finite,
     check_positive,
@@ -157,7 +158,8 @@ def random_slip_scenario(kind: str, rng: Any) -> SlipScenario:
     100-300 events/s of 1-4 um; 60 ms recorded after the onset, 200 ms of steady sliding.
     """
     check_choice("kind", kind, SCENARIO_KINDS)
-    rng = np.random.default_rng(rng)
+    generator = as_rng("rng", rng)
+    rng = generator if generator is not None else np.random.default_rng()
     steady = kind == "steady"
     return SlipScenario(
         kind=kind,
