@@ -86,6 +86,22 @@ def test_fit_plane_recovers_a_known_plane():
     assert np.abs(distances).max() < 1e-12
 
 
+@pytest.mark.parametrize(
+    ("outward", "match"),
+    [
+        ([0, 1], r"`outward` must be a non-zero 3-vector, got \[0.0, 1.0\]"),
+        ([0, 0, 0], "`outward` must be a non-zero 3-vector"),
+        ([np.nan, 0, 0], "`outward` must be finite everywhere"),
+        ([1, 0, 0], r"`outward` \[1.0, 0.0, 0.0\] lies in the fitted plane"),
+    ],
+)
+def test_fit_plane_needs_an_outward_direction_off_the_plane(outward, match):
+    points = [[0, 0, 1], [1, 0, 1], [0, 1, 1], [1, 1, 1]]
+    with pytest.raises(ValueError, match=match):
+        fit_plane(points, outward=outward)
+    assert fit_plane(points, outward=[1, 0, -0.1])[0].tolist() == [0.0, 0.0, -1.0]
+
+
 def test_probe_plane_on_a_tilted_box(sensor, calibration):
     tilt = Rotation.from_euler("xy", [4, -7], degrees=True)
     box = Box("box", size=(0.2, 0.2, 0.05), pose=make_pose(tilt))

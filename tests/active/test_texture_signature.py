@@ -102,6 +102,8 @@ def test_band_power_splits_bins_and_marks_unobserved_bands():
     power = band_power(k, psd, [0.0, 1.0, 5.0, 20.0, 30.0])
     np.testing.assert_allclose(power[:3], [[1.0] * 3, [4.0] * 3, [15.0] * 3])
     assert np.all(np.isnan(power[3]))
+    with pytest.raises(ValueError, match="`spatial_psd` must be >= 0 \\(a power\\), got -1"):
+        band_power(k, -psd, [0.0, 1.0, 5.0])
 
 
 def test_levels_are_relative_to_the_contact_level():

@@ -109,3 +109,5 @@ def test_errors_name_the_parameter():
         PiezoelectricTransducer(amplifier="current", feedback_resistance=math.inf)
     with pytest.raises(ValueError, match="`stress` must be a time series"):
         PiezoelectricTransducer().respond(1.0, time_step=1e-3)
+    with pytest.raises(ValueError, match=r"`stress` must be a time series .*, got shape \(0,\)"):
+        charge_amplifier_output(np.zeros(0), 1e-3, area=1e-6, feedback_capacitance=1e-11)

@@ -102,6 +102,9 @@ class PlaneEstimate:
         }
 
 
+_IN_PLANE = 1e-3  # |cos| between `outward` and the normal below which it cannot choose
+
+
 def fit_plane(points: Any, *, outward: Any = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Total-least-squares plane through 3-D points.
 
@@ -110,7 +113,8 @@ def fit_plane(points: Any, *, outward: Any = None) -> tuple[np.ndarray, np.ndarr
     points : array_like
         (N >= 3, 3) points [m], not all on one line.
     outward : array_like, optional
-        (3,) a direction the normal should agree with (its sign is chosen so).
+        (3,) a direction the normal should agree with (its sign is chosen so); it must
+        not lie in the plane.
 
     Returns
     -------
@@ -129,6 +133,10 @@ def fit_plane(points: Any, *, outward: Any = None) -> tuple[np.ndarray, np.ndarr
     ([0.0, 0.0, 1.0], [0.5, 0.5, 1.0], 0.0)
     """
     points = as_finite_array("points", points, ndim=2)
+    if outward is not None:
+        outward = as_finite_array("outward", outward, ndim=1)
+        if outward.shape != (3,) or not np.any(outward):
+            raise ValueError(f"`outward` must be a non-zero 3-vector, got {outward.tolist()}")
     if points.shape[1] != 3 or points.shape[0] < MIN_PROBES:
         raise ValueError(f"`points` must be (N >= 3, 3), got shape {points.shape}")
     centroid = points.mean(axis=0)
@@ -136,8 +144,15 @@ def fit_plane(points: Any, *, outward: Any = None) -> tuple[np.ndarray, np.ndarr
     if singular[1] <= 1e-9 * max(singular[0], 1e-300):
         raise ValueError("`points` lie on one line; a plane needs points spread in two directions")
     normal = vectors[2]
-    if outward is not None and normal @ np.asarray(outward, float) < 0:
-        normal = -normal
+    if outward is not None:
+        agreement = float(normal @ outward) / float(np.linalg.norm(outward))
+        if abs(agreement) < _IN_PLANE:
+            raise ValueError(
+                f"`outward` {outward.tolist()} lies in the fitted plane (normal "
+                f"{np.round(normal, 6).tolist()}): it cannot choose the normal's sign"
+            )
+        if agreement < 0:
+            normal = -normal
     normal = normal + 0.0  # no negative zeros in reports
     return normal, centroid, (points - centroid) @ normal
 

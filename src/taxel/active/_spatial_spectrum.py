@@ -171,6 +171,8 @@ def band_power(spatial_frequency: Any, spatial_psd: Any, band_edges: Any) -> np.
             f"`spatial_psd` {psd.shape} must be (n_frequencies, ...) with n_frequencies = "
             f"{frequency.size} >= 2"
         )
+    if np.any(psd < 0):
+        raise ValueError(f"`spatial_psd` must be >= 0 (a power), got {float(psd.min()):g}")
     check_band_edges(edges)
     weights = band_weights(frequency, edges)
     power = np.tensordot(weights, psd, axes=(1, 0))

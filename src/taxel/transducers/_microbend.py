@@ -127,6 +127,8 @@ def microbend_line_loads(
     -------
     numpy.ndarray, shape (..., rows + cols)
         F = (k / beta) ln(P_0 T_0 / P) [N]: the row sums, then the column sums of the force.
+        A power above P_0 T_0 (detector noise on an unloaded fiber) gives a negative load,
+        kept so that averaging stays unbiased; `separable_pressure` clips it to zero.
 
     Examples
     --------

@@ -26,8 +26,10 @@ __all__ = [
 
 def _check_series(stress: Any, time_step: float) -> tuple[np.ndarray, float]:
     stress = as_finite_array("stress", stress)
-    if stress.ndim == 0:
-        raise ValueError("`stress` must be a time series (time along the last axis), got 0-D")
+    if stress.ndim == 0 or stress.shape[-1] == 0:
+        raise ValueError(
+            f"`stress` must be a time series (time along the last axis), got shape {stress.shape}"
+        )
     return stress, check_positive("time_step", time_step)
 
 
