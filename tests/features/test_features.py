@@ -432,6 +432,31 @@ def test_features_of_large_values_are_those_of_small_ones():
         extract(image, 3.3e-2 / 128, baseline=-1e308)
 
 
+def test_flags_are_booleans():
+    # a truthy string would switch the option on
+    image = np.zeros((8, 8))
+    with pytest.raises(TypeError, match="`calibrated` must be True or False, got 'no'"):
+        extract(image, 1e-3, calibrated="no")
+    with pytest.raises(TypeError, match="`defects` must be True or False, got 'yes'"):
+        extract(image, 1e-3, defects="yes")
+    assert extract(image, 1e-3, calibrated=np.True_, defects=False).contact.present is False
+
+
+def test_sensor_coordinates_checks_its_input():
+    from taxel.features import sensor_coordinates
+
+    x, y = sensor_coordinates(np.arange(3), 1.0, (4, 4), 1e-3)  # broadcast, as NumPy does
+    assert float(x) == -5e-4 and y.tolist() == pytest.approx([-1.5e-3, -5e-4, 5e-4])
+    with pytest.raises(ValueError, match=r"`shape` must be a \(rows, cols\) pair, got \(4,\)"):
+        sensor_coordinates(1, 2, (4,), 1e-3)
+    with pytest.raises(ValueError, match="`shape` must be >= 1, got -4"):
+        sensor_coordinates(1, 2, (-4, -4), 1e-3)
+    with pytest.raises(ValueError, match="`rows` must be finite"):
+        sensor_coordinates(np.nan, 2, (4, 4), 1e-3)
+    with pytest.raises(ValueError, match=r"`rows` and `cols` must broadcast .* \(3,\) and \(2,\)"):
+        sensor_coordinates([1, 2, 3], [1, 2], (4, 4), 1e-3)
+
+
 def test_bad_options():
     image = np.zeros((8, 8))
     with pytest.raises(ValueError, match="`pose` must have shape"):

@@ -27,7 +27,7 @@ from typing import Any, cast
 import cv2
 import numpy as np
 
-from taxel._validation import check_finite, check_positive, check_range
+from taxel._validation import check_finite, check_flag, check_positive, check_range
 from taxel.features._sensor import (
     check_image_shape,
     cover_blur,
@@ -274,7 +274,7 @@ def _smoothing_gain(smoothing: float) -> float:
 def removes_defects(sensor_or_pitch: Any, defects: bool | None) -> bool:
     """Whether defects are removed: as asked, or (None) when the cover is >= 3 taxels deep."""
     if defects is not None:
-        return bool(defects)
+        return check_flag("defects", defects)
     depth = cover_depth(sensor_or_pitch)
     if depth is None:
         return False
@@ -335,6 +335,7 @@ def prepare(
     values = hexagonal_resampled(given, sensor_or_pitch)
     pitch = pitch_pair(sensor_or_pitch)
     smoothing = check_range("smoothing", smoothing, 0.0, 20.0)
+    calibrated = check_flag("calibrated", calibrated)
     step = 2 if values.shape[0] > 64 and values.shape[1] > 64 else 1
     dtype = np.asarray(image).dtype  # (a raw frame: small integers, as it was given)
     whole = values is given and dtype.kind in "biu" and dtype.itemsize * 8 <= _EXACT_BITS
@@ -362,7 +363,7 @@ def prepare(
     common: dict[str, Any] = {
         "image": values, "smooth": smooth, "pitch": pitch, "baseline": level, "noise": noise,
         "contrast": contrast, "raw_noise": raw_noise, "low": low, "high": high,
-        "calibrated": bool(calibrated), "peak": peak, "defects_removed": cleaned,
+        "calibrated": calibrated, "peak": peak, "defects_removed": cleaned,
         "residual": residual, "residual_step": step, "blur": cover_blur(sensor_or_pitch),
         "cover_depth": cover_depth(sensor_or_pitch) or 0.0,
     }  # fmt: skip
