@@ -116,3 +116,20 @@ def test_a_truth_that_cannot_be_written_leaves_no_frame(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "--truth /proc/truth.npz cannot be written" in err and err.count("\n") == 1
     assert not out.exists() and list(tmp_path.iterdir()) == []
+
+
+def test_a_read_only_folder_is_a_one_line_error(tmp_path, capsys, monkeypatch):
+    # there neither the temporary file can be written nor removed; the error names the flag
+    from taxel.cli import _simulate
+
+    def read_only(path, *args, **kwargs):
+        raise OSError(30, "Read-only file system", str(path))
+
+    monkeypatch.setattr(_simulate, "_save", read_only)
+    monkeypatch.setattr(Path, "unlink", read_only)
+    out = tmp_path / "frame.npy"
+    argv = ["simulate", "--sensor", "capacitive4x4", "--object", "sphere", "--force", "1"]
+    assert main([*argv, "--out", str(out)]) == 2
+    assert capsys.readouterr().err == (
+        f"taxel simulate: error: --out {out} cannot be written (Read-only file system)\n"
+    )

@@ -1,3 +1,4 @@
+import errno
 from pathlib import Path
 
 import numpy as np
@@ -40,7 +41,7 @@ def test_bad_targets_are_named(tmp_path):
 def test_a_failed_write_names_the_file_asked_for():
     # /proc takes no new files, even from root; the error names the file, not the
     # temporary one the write goes through
-    with pytest.raises(OSError, match=r"'/proc/frame.npy'") as error:
+    with pytest.raises(OSError, match=r"/proc/frame\.npy cannot be written") as error:
         write_frame("/proc/frame.npy", np.zeros((2, 2)))
     assert ".partial" not in str(error.value)
 
@@ -60,3 +61,46 @@ def test_several_files_are_written_all_or_none(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["b.txt"]  # no temporaries left
     write_files([(first, lambda t: t.write_text("1")), (second, lambda t: t.write_text("2"))])
     assert (first.read_text(), second.read_text()) == ("1", "2")
+
+
+def test_a_read_only_file_system_names_the_file_asked_for(tmp_path, monkeypatch):
+    # there, creating the temporary fails, and so does removing it afterwards: the error
+    # still names the file asked for, not the hidden temporary
+    def read_only(path, *args, **kwargs):
+        raise OSError(errno.EROFS, "Read-only file system", str(path))
+
+    monkeypatch.setattr(Path, "unlink", read_only)
+    target = tmp_path / "frame.npy"
+    with pytest.raises(OSError, match="Read-only file system") as error:
+        write_files([(target, read_only)])
+    assert error.value.filename == str(target)
+    assert error.value.errno == errno.EROFS
+
+
+def test_a_folder_that_takes_no_files_is_found_before_any_work(tmp_path, monkeypatch):
+    from taxel.io import _writers
+
+    def refuse(*args, **kwargs):
+        raise PermissionError(errno.EACCES, "Permission denied")
+
+    monkeypatch.setattr(_writers.tempfile, "mkstemp", refuse)
+    with pytest.raises(PermissionError, match=r"^--out .*x\.npy cannot be written \(Permission"):
+        check_new_file(tmp_path / "x.npy", suffix=".npy", name="--out")
+
+
+def test_checking_a_folder_leaves_nothing_in_it(tmp_path):
+    assert check_new_file(tmp_path / "x.npy", suffix=".npy") == tmp_path / "x.npy"
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.skipif(not Path("/proc/self").is_dir(), reason="needs Linux's /proc")
+def test_a_virtual_folder_is_refused_when_checked():
+    with pytest.raises(OSError, match=r"^`path` /proc/frame.npy cannot be written"):
+        check_new_file("/proc/frame.npy")
+
+
+def test_the_suffix_is_checked_as_written(tmp_path):
+    # Calibration.save, np.save and the readers' users expect it in lower case
+    expected = r"must name a .npz file \(in lower case\), got '.*C.NPZ'"
+    with pytest.raises(ValueError, match=expected):
+        check_new_file(tmp_path / "C.NPZ", suffix=".npz")

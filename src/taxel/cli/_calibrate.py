@@ -6,6 +6,7 @@ import argparse
 import sys
 
 from taxel.cli._arguments import preset, seed
+from taxel.cli._output import writing
 
 __all__ = ["register"]
 
@@ -18,7 +19,8 @@ def _run(arguments: argparse.Namespace) -> int:
     sensor = make_sensor(arguments.sensor)
     calibration = calibrate(sensor, rng=arguments.seed)
     error = calibration_error(sensor, calibration)
-    calibration.save(out, overwrite=arguments.overwrite)
+    with writing("--out", out):
+        calibration.save(out, overwrite=arguments.overwrite)
     excluded = int((~calibration.valid).sum())
     sys.stdout.write(
         f"calibrated {sensor.name} with flat-plate presses up to {sensor.full_scale / 1e3:.4g} "

@@ -28,6 +28,7 @@ from taxel.cli._arguments import (
     seed,
 )
 from taxel.cli._main import CommandLineError
+from taxel.cli._output import cannot_write
 from taxel.io import check_new_file, write_files
 
 __all__ = ["register"]
@@ -79,10 +80,7 @@ def _write_both(
     try:
         write_files(jobs)
     except OSError as error:
-        target = Path(str(error.filename))
-        raise CommandLineError(
-            f"{options[target]} {target} cannot be written ({error.strerror or error})"
-        ) from None
+        raise cannot_write(error, options) from None
 
 
 def _save(path: Path, save: Callable[..., None], *args: Any, **kwargs: Any) -> None:

@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 
 from taxel.cli._arguments import NORMALIZATIONS, integer_in, positive, real_in
+from taxel.cli._output import writing
 
 __all__ = ["register"]
 
@@ -82,7 +83,8 @@ def _fit(arguments: argparse.Namespace) -> int:
     model = fit_texture_classifier(
         features, labels, n_neighbors=arguments.neighbors, settings=settings
     )
-    model.save(out, overwrite=arguments.overwrite)
+    with writing("--out", out):
+        model.save(out, overwrite=arguments.overwrite)
     counts = ", ".join(f"{label} {labels.count(label)}" for label in model.classes)
     print(f"fitted {len(files)} recordings of {len(model.classes)} classes ({counts}) -> {out}")
     return 0

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
+import tempfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -22,8 +24,10 @@ def check_new_file(
 ) -> Path:
     """Check that `path` may be written, and return it as a Path.
 
-    It must have the right suffix, lie in a folder that exists, not be an existing file
-    (unless `overwrite`), and never be one of the `inputs`.
+    It must have the right suffix (in lower case, as written), lie in a folder that exists
+    and takes new files, not be an existing file (unless `overwrite`), and never be one of
+    the `inputs`. Whether the folder takes new files is tried by creating and removing an
+    empty temporary file in it, so that a command finds out before its work, not after.
 
     Raises
     ------
@@ -31,6 +35,9 @@ def check_new_file(
         Wrong suffix, a missing folder, a folder's path, or the path of an input file.
     FileExistsError
         The file exists and `overwrite` is False.
+    OSError
+        The folder takes no new file (read-only, no permission, a virtual file system); the
+        message names `name` and the file.
 
     Examples
     --------
@@ -41,8 +48,9 @@ def check_new_file(
     """
     target = Path(path)
     label = name if name.startswith("--") else f"`{name}`"  # a flag, or a parameter
-    if suffix is not None and target.suffix.lower() != suffix:
-        raise ValueError(f"{label} must name a {suffix} file, got {str(target)!r}")
+    if suffix is not None and target.suffix != suffix:
+        case = " (in lower case)" if target.suffix.lower() == suffix else ""
+        raise ValueError(f"{label} must name a {suffix} file{case}, got {str(target)!r}")
     if not target.parent.is_dir():
         raise ValueError(f"{label} is in a folder that does not exist: {str(target.parent)!r}")
     if target.is_dir():
@@ -53,7 +61,20 @@ def check_new_file(
     if target.exists() and not overwrite:
         how = "--overwrite" if name.startswith("--") else "overwrite=True"
         raise FileExistsError(f"{target} exists; pass {how} to replace it")
+    _check_folder_takes_files(target, label)
     return target
+
+
+def _check_folder_takes_files(target: Path, label: str) -> None:
+    """Create and remove an empty file beside `target`; an OSError naming it if that fails."""
+    try:
+        handle, probe = tempfile.mkstemp(prefix=f".{target.name}.", dir=target.parent)
+    except OSError as error:
+        why = error.strerror or error
+        raise type(error)(f"{label} {target} cannot be written ({why})") from None
+    os.close(handle)
+    with contextlib.suppress(OSError):
+        os.unlink(probe)
 
 
 def _partial(target: Path) -> Path:
@@ -78,7 +99,8 @@ def write_files(jobs: list[tuple[Path, Callable[[Path], Any]]]) -> None:
     ------
     OSError
         From the first write or rename that fails, with the target's name (not the
-        temporary one's) as its filename.
+        temporary one's) as its filename. Removing the temporary files afterwards never
+        raises (on a read-only file system it cannot, and there is nothing to remove).
     """
     temporaries = [_partial(target) for target, _ in jobs]
     step = 0
@@ -91,7 +113,8 @@ def write_files(jobs: list[tuple[Path, Callable[[Path], Any]]]) -> None:
         raise OSError(error.errno, error.strerror, str(jobs[step][0])) from None
     finally:
         for temporary in temporaries:
-            temporary.unlink(missing_ok=True)
+            with contextlib.suppress(OSError):  # EROFS: nothing was created to remove
+                temporary.unlink(missing_ok=True)
 
 
 def write_frame(
