@@ -21,3 +21,23 @@ def test_import_taxel_stays_light():
     code = "import sys, taxel, taxel.reconstruction; print('matplotlib' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_a_failed_write_keeps_the_old_file(tmp_path, monkeypatch):
+    import pytest
+    from matplotlib.figure import Figure
+
+    path = tmp_path / "inverse.png"
+    path.write_bytes(b"old figure")
+
+    def disk_full(self, target, **kwargs):
+        with open(target, "wb") as stream:
+            stream.write(b"\x89PNG cut short")
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(Figure, "savefig", disk_full)
+    with pytest.raises(OSError, match="No space left") as error:
+        plot_reconstruction(path, sensor="resistive16")
+    assert error.value.filename == str(path)
+    assert path.read_bytes() == b"old figure"
+    assert [item.name for item in tmp_path.iterdir()] == ["inverse.png"]

@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from taxel.cli._arguments import positive, preset
+from taxel.cli._output import writing
 
 __all__ = ["register"]
 
@@ -130,6 +131,14 @@ def _pitch(arguments: argparse.Namespace) -> Any:
     return arguments.pitch
 
 
+def _write_figure(path: Path, figure: Any) -> None:
+    """Save the --figure PNG beside `path` and rename it: a failed write keeps an old one."""
+    from taxel.io import write_files
+
+    with writing("--figure", path):
+        write_files([(path, lambda temporary: figure.savefig(temporary, dpi=120, format="png"))])
+
+
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.features import extract
     from taxel.io import read_frame
@@ -160,8 +169,7 @@ def _run(arguments: argparse.Namespace) -> int:
     if arguments.figure:  # first: a figure that cannot be written stops before any output
         from taxel.viz import plot_features
 
-        figure = plot_features(image, features, pitch)
-        figure.savefig(arguments.figure, dpi=120)
+        _write_figure(Path(arguments.figure), plot_features(image, features, pitch))
     data = features.to_dict()
     if arguments.json:
         sys.stdout.write(json.dumps(data, indent=2) + "\n")

@@ -53,6 +53,7 @@ def plot_reconstruction(
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure  # no pyplot: no GUI backend, no global state
 
+    from taxel.io import write_files
     from taxel.reconstruction import (
         TikhonovSolver,
         as_forward_model_spec,
@@ -137,7 +138,8 @@ def plot_reconstruction(
         f"pitch {spec.taxel_pitch * 1e3:.3g} mm (d / pitch = {spec.depth / spec.taxel_pitch:.1f})"
     )
     path = Path(path)
-    figure.savefig(path, dpi=110)
+    # written beside the target and renamed once complete: a failed write keeps an old file
+    write_files([(path, lambda temporary: figure.savefig(temporary, dpi=110, format="png"))])
     return path
 
 
