@@ -2,6 +2,7 @@
 
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -88,7 +89,9 @@ def test_demo_refuses_a_file_as_output_folder(capsys, tmp_path, one_experiment):
     target = tmp_path / "taken.txt"
     target.write_text("keep me")
     assert main(["demo", "--quick", "--no-progress", "--out", str(target)]) == 2
-    assert "`out` must be a folder" in capsys.readouterr().err
+    assert capsys.readouterr().err == (
+        f"taxel demo: error: --out {str(target)!r} must be a folder, but it is a file\n"
+    )
     assert target.read_text() == "keep me"
 
 
@@ -102,3 +105,44 @@ def test_demo_replaces_only_its_own_files(capsys, tmp_path, one_experiment):
     assert main(["demo", "--quick", "--no-progress", "--out", str(mine)]) == 2
     assert "was not written by taxel demo" in capsys.readouterr().err
     assert (mine / "report.html").read_text() == "<html>my own notes</html>"
+
+
+@pytest.mark.parametrize("out", ["", "  "])
+def test_demo_refuses_an_empty_output_folder(capsys, tmp_path, monkeypatch, out, one_experiment):
+    monkeypatch.chdir(tmp_path)  # an empty --out would have meant the current folder
+    assert main(["demo", "--quick", "--no-progress", "--out", out]) == 2
+    assert capsys.readouterr().err == f"taxel demo: error: --out must name a folder, got {out!r}\n"
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_failed_demo_keeps_the_earlier_report(capsys, tmp_path, monkeypatch, one_experiment):
+    assert main(["demo", "--quick", "--no-progress", "--out", str(tmp_path)]) == 0
+    capsys.readouterr()
+    before = {name: (tmp_path / name).read_bytes() for name in ("report.html", "results.json")}
+    write_text = Path.write_text
+
+    def disk_full(path, text, *args, **kwargs):
+        if path.name.startswith(".results.json"):
+            write_text(path, text[:100], *args, **kwargs)
+            raise OSError(28, "No space left on device")
+        return write_text(path, text, *args, **kwargs)
+
+    monkeypatch.setattr(Path, "write_text", disk_full)
+    assert main(["demo", "--quick", "--no-progress", "--out", str(tmp_path)]) == 2
+    results = tmp_path / "results.json"
+    assert capsys.readouterr().err == (
+        f"taxel demo: error: --out {results} cannot be written (No space left on device)\n"
+    )
+    assert {name: (tmp_path / name).read_bytes() for name in before} == before
+    assert sorted(path.name for path in tmp_path.iterdir()) == sorted(before)
+
+
+@pytest.mark.skipif(not Path("/proc/self").is_dir(), reason="needs Linux's /proc")
+def test_demo_finds_an_unwritable_folder_before_the_experiments(capsys, monkeypatch):
+    from taxel.report import _runner
+
+    monkeypatch.setattr(_runner, "EXPERIMENTS", ())  # none would run
+    assert main(["demo", "--out", "/proc/taxel-demo"]) == 2
+    assert capsys.readouterr().err == (
+        "taxel demo: error: --out /proc/taxel-demo cannot be written (No such file or directory)\n"
+    )

@@ -3,14 +3,40 @@
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
+
+from taxel.cli._main import CommandLineError
+from taxel.cli._output import writing
 
 __all__ = ["register"]
+
+_FILES = ("report.html", "results.json")
+
+
+def _output_folder(text: str) -> Path:
+    """The --out folder, created if needed, once it is known to take the report's files.
+
+    Checked before the experiments run (they take minutes), not after.
+    """
+    from taxel.io import check_new_file
+
+    if not text.strip():
+        raise CommandLineError(f"--out must name a folder, got {text!r}")
+    folder = Path(text)
+    if folder.exists() and not folder.is_dir():
+        raise CommandLineError(f"--out {text!r} must be a folder, but it is a file")
+    with writing("--out", folder):
+        folder.mkdir(parents=True, exist_ok=True)
+    check_new_file(folder / _FILES[0], suffix=".html", overwrite=True, name="--out")
+    return folder
 
 
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.report import run_demo
 
-    result = run_demo(arguments.out, quick=arguments.quick, progress=not arguments.no_progress)
+    folder = _output_folder(arguments.out)
+    with writing("--out", *(folder / name for name in _FILES)):
+        result = run_demo(folder, quick=arguments.quick, progress=not arguments.no_progress)
     width = max(len(experiment.title) for experiment in result.experiments)
     print(f"{'experiment':{width}}  checks  verdict")
     for experiment in result.experiments:
@@ -28,7 +54,12 @@ def _run(arguments: argparse.Namespace) -> int:
 def register(commands: argparse._SubParsersAction) -> None:
     """Add ``taxel demo`` to the command line."""
     parser = commands.add_parser(
-        "demo", help="run the seeds' experiments and write an HTML report"
+        "demo",
+        help="run the seeds' experiments and write an HTML report",
+        description="Run the seeds' experiments and write report.html and results.json into "
+        "DIR. The report and results of an earlier demo there are replaced (both at once, "
+        "once the new ones are complete); files of those names that taxel demo did not "
+        "write are refused.",
     )
     parser.add_argument(
         "--out", metavar="DIR", default="demo-output", help="output folder (default: demo-output)"

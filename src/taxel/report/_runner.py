@@ -8,6 +8,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from taxel.io import write_files
 from taxel.report._active_seed import deformation, edge_radius
 from taxel.report._context import DemoContext
 from taxel.report._design import harmon_criteria
@@ -94,7 +95,9 @@ def run_demo(
     Parameters
     ----------
     out : path
-        Output folder (created if needed; the two files in it are replaced).
+        Output folder (created if needed). The two files in it, when an earlier run wrote
+        them, are replaced once both new ones are written; other files of those names are
+        refused.
     quick : bool
         Fewer trials, for a fast look.
     experiments : sequence of callables, optional
@@ -129,14 +132,21 @@ def run_demo(
         bar.close()
     seconds = time.perf_counter() - started
     report = folder / "report.html"
-    report.write_text(render_html(results, quick=quick, seconds=seconds), encoding="utf-8")
+    html = render_html(results, quick=quick, seconds=seconds)
     numbers = {
         "quick": quick,
         "seconds": round(seconds, 2),
         "experiments": [experiment.to_dict() for experiment in results],
     }
     result_file = folder / "results.json"
-    result_file.write_text(json.dumps(numbers, indent=2, allow_nan=True), encoding="utf-8")
+    text = json.dumps(numbers, indent=2, allow_nan=True)
+    # both or neither, each complete: a failed write (a full disk) keeps an earlier run's
+    write_files(
+        [
+            (report, lambda temporary: temporary.write_text(html, encoding="utf-8")),
+            (result_file, lambda temporary: temporary.write_text(text, encoding="utf-8")),
+        ]
+    )
     return DemoResult(tuple(results), report, result_file, seconds)
 
 
