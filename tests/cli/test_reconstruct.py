@@ -260,3 +260,37 @@ def test_unreadable_calibrations_are_one_line_errors(tmp_path, capsys):
         assert main([*arguments, "--calibration", str(path)]) == 2
         error = capsys.readouterr().err
         assert error.count("\n") == 1 and message in error, (path, error)
+
+
+def test_a_batch_of_any_shape_is_reconstructed_frame_by_frame(frame_file, tmp_path, capsys):
+    frame = np.load(frame_file)
+    batch = tmp_path / "batch.npy"
+    np.save(batch, np.stack([np.stack([frame, 2 * frame])] * 2))  # (2, 2, 16, 16)
+    out = tmp_path / "p.npy"
+    assert main(["reconstruct", str(batch), "--sensor", "resistive16", "--out", str(out)]) == 0
+    pressure = np.load(out)
+    assert pressure.shape == (2, 2, 16, 16)
+    assert np.allclose(pressure[1], pressure[0])
+    assert pressure[0, 1].sum() == pytest.approx(2 * pressure[0, 0].sum(), rel=0.05)
+    text = capsys.readouterr().out
+    assert "written to" in text and "pressure map (2, 2, 16, 16)" in text
+    forces = text.split("force ")[1].split(" N")[0]
+    assert len(forces.split(", ")) == 4  # one force per frame
+
+
+def test_a_failed_write_names_out_and_leaves_nothing(frame_file, tmp_path, capsys, monkeypatch):
+    from pathlib import Path
+
+    from taxel.io import _writers
+
+    def disk_full(path, *args, **kwargs):
+        raise OSError(28, "No space left on device", str(path))
+
+    monkeypatch.setattr(_writers.np, "save", disk_full)
+    monkeypatch.setattr(Path, "unlink", disk_full)  # nor can the temporary be removed
+    out = tmp_path / "p.npy"
+    argv = ["reconstruct", str(frame_file), "--sensor", "resistive16", "--out", str(out)]
+    assert main(argv) == 2
+    assert capsys.readouterr().err == (
+        f"taxel reconstruct: error: --out {out} cannot be written (No space left on device)\n"
+    )

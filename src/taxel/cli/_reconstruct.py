@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from taxel.cli._arguments import integer_in, positive
+from taxel.cli._output import writing
 
 __all__ = ["register"]
 
@@ -100,7 +101,6 @@ def _run(arguments: argparse.Namespace) -> int:
         regularization=arguments.regularization,
         noise_level=arguments.noise_level,
     )
-    write_frame(arguments.out, result.pressure, overwrite=arguments.overwrite, inputs=(path,))
     centre = result.centroid_m
     summary = {
         "sensor": arguments.sensor,
@@ -118,16 +118,20 @@ def _run(arguments: argparse.Namespace) -> int:
         "out": str(arguments.out),
     }
     if arguments.json:
-        sys.stdout.write(json.dumps(summary) + "\n")
+        text = json.dumps(summary) + "\n"
     else:
-        lam = np.atleast_1d(result.regularization)
-        sys.stdout.write(
-            f"{result.method} (order {result.order}), lambda = {_format(lam)} ({result.rule})\n"
-            f"residual norm {_format(np.atleast_1d(result.residual_norm))}, "
-            f"solution norm {_format(np.atleast_1d(result.solution_norm))}, "
-            f"force {_format(np.atleast_1d(result.normal_force))} N{_centre_text(centre)}\n"
+        text = (
+            f"{result.method} (order {result.order}), lambda = "
+            f"{_format(result.regularization)} ({result.rule})\n"
+            f"residual norm {_format(result.residual_norm)}, "
+            f"solution norm {_format(result.solution_norm)}, "
+            f"force {_format(result.normal_force)} N{_centre_text(centre)}\n"
             f"pressure map {result.pressure.shape} [Pa] written to {arguments.out}\n"
         )
+    # written last: a run that fails before leaves no --out behind
+    with writing("--out", arguments.out):
+        write_frame(arguments.out, result.pressure, overwrite=arguments.overwrite, inputs=(path,))
+    sys.stdout.write(text)
     return 0
 
 
@@ -152,9 +156,11 @@ def _plain(value):
     return float(array) if array.ndim == 0 else array.tolist()
 
 
-def _format(values: np.ndarray) -> str:
-    text = ", ".join(f"{v:.4g}" for v in values[:4])
-    return text + (", ..." if values.size > 4 else "")
+def _format(values) -> str:
+    """The first four of the values (one per frame, of a batch of any shape), then '...'."""
+    flat = np.ravel(values)
+    text = ", ".join(f"{v:.4g}" for v in flat[:4])
+    return text + (", ..." if flat.size > 4 else "")
 
 
 def register(commands: argparse._SubParsersAction) -> None:
