@@ -203,7 +203,7 @@ def test_raw_frames_need_a_calibration_and_nothing_is_overwritten(tmp_path, caps
 
 
 def _frame_files(folder):
-    """Files that are no FRAME: empty, an .npz archive, complex and text values, a folder."""
+    """Files that are no FRAME: empty, archives, text, a lying header, complex, a folder."""
     empty = folder / "empty.npy"
     empty.write_bytes(b"")
     archive = folder / "archive.npy"
@@ -213,9 +213,21 @@ def _frame_files(folder):
     np.save(complex_values, np.ones((16, 16), complex))
     text = folder / "text.npy"
     np.save(text, np.full((16, 16), "a"))
+    corrupt_archive = folder / "corrupt.npz"
+    corrupt_archive.write_bytes(b"PK\x03\x04 garbage")
+    csv = folder / "frame.csv"
+    csv.write_text("1, 2\n3, 4\n")
+    claims = folder / "claims.npy"  # a header claiming 2 TB: no MemoryError
+    with claims.open("wb") as handle:
+        header = {"descr": "<f8", "fortran_order": False, "shape": (10**6, 1000, 16, 16)}
+        np.lib.format.write_array_header_1_0(handle, header)
+        handle.write(bytes(64))
     return {
         empty: "not a readable .npy file",
         archive: "is an .npz archive",
+        corrupt_archive: "is an .npz archive",
+        csv: "no NumPy header: a text or image file?",
+        claims: "truncated or corrupt: its header claims shape (1000000, 1000, 16, 16)",
         complex_values: "holds complex128 values, not real numbers",
         text: "holds <U1 values, not real numbers",
         folder: "is a folder",

@@ -1,10 +1,12 @@
 """Frame and sequence readers: round trips for every format, and every kind of bad file."""
 
+import re
+
 import cv2
 import numpy as np
 import pytest
 
-from taxel.io import TactileSequence, read_frame, read_sequence
+from taxel.io import TactileSequence, read_array, read_frame, read_sequence
 
 GRID = np.arange(12, dtype=np.float64).reshape(3, 4) * 7.0
 
@@ -180,3 +182,65 @@ def test_bad_npz_sequences(tmp_path):
         read_sequence(tmp_path / "short.npz", time_scale=0)
     with pytest.raises(FileNotFoundError, match="absent.csv"):
         read_sequence(tmp_path / "absent.csv")
+
+
+def _claiming(path, shape):
+    """A .npy file whose header claims `shape` of float64, followed by 64 bytes."""
+    header = {"descr": "<f8", "fortran_order": False, "shape": shape}
+    with open(path, "wb") as stream:
+        np.lib.format.write_array_header_1_0(stream, header)
+        stream.write(bytes(64))
+    return path
+
+
+@pytest.mark.parametrize("shape", [(10**7, 10**7), (10**6, 1000, 16, 16), (3, 3)])
+def test_a_header_claiming_more_than_the_file_holds_is_refused(tmp_path, shape):
+    # read naively, the first two would allocate terabytes before finding the data missing
+    path = _claiming(tmp_path / "claims.npy", shape)
+    expected = r"claims\.npy: not a readable \.npy file \(truncated or corrupt: its header "
+    expected += rf"claims shape \({shape[0]}, .* \(\d+ bytes\), but 64 bytes follow\)"
+    with pytest.raises(ValueError, match=expected):
+        read_frame(path)
+    with pytest.raises(ValueError, match=expected):
+        read_array(path)
+
+
+def test_an_archive_member_claiming_more_than_it_holds_is_refused(tmp_path):
+    import zipfile
+
+    member = _claiming(tmp_path / "frame.npy", (10**7, 10**7))
+    path = tmp_path / "claims.npz"
+    with zipfile.ZipFile(path, "w") as archive:
+        archive.write(member, "frame.npy")
+    with pytest.raises(ValueError, match=r"claims\.npz: not a readable \.npz file \(truncated"):
+        read_frame(path)
+
+
+@pytest.mark.parametrize(
+    ("content", "problem"),
+    [
+        (b"", "the file is empty"),
+        (b"1, 2\n3, 4\n", "no NumPy header: a text or image file?"),
+        (b"PK\x03\x04 garbage", "it is an .npz archive; save one array with np.save"),
+    ],
+)
+def test_files_that_are_no_npy_say_what_they_are(tmp_path, content, problem):
+    # not numpy's hint to load a pickle unsafely
+    path = tmp_path / "frame.npy"
+    path.write_bytes(content)
+    with pytest.raises(ValueError, match=re.escape(f"not a readable .npy file ({problem})")):
+        read_array(path)
+
+
+def test_an_npz_that_is_no_zip_is_a_value_error(tmp_path):
+    path = tmp_path / "frame.npz"
+    path.write_bytes(b"PK\x03\x04 garbage")
+    with pytest.raises(ValueError, match=r"frame\.npz: not a readable \.npz file"):
+        read_frame(path)
+
+
+def test_read_array_keeps_the_stored_type_and_shape(tmp_path):
+    stored = np.arange(24, dtype=np.int16).reshape(2, 3, 4)
+    np.save(tmp_path / "batch.npy", stored)
+    array = read_array(tmp_path / "batch.npy")
+    assert array.dtype == np.int16 and np.array_equal(array, stored)

@@ -48,16 +48,15 @@ def _order(arguments: argparse.Namespace) -> int:
 
 def _load_frame(path: Path) -> np.ndarray:
     """The readings of FRAME, a .npy file of real numbers (NaN marks dead taxels)."""
+    from taxel.io import read_array
+
     if not path.is_file():
         what = "a folder" if path.is_dir() else "not an existing file"
         raise ValueError(f"`FRAME` must be an existing .npy file; {str(path)!r} is {what}")
     try:
-        with path.open("rb") as handle:
-            frame = np.load(handle, allow_pickle=False)
-    except (ValueError, EOFError, OSError) as error:
-        raise ValueError(f"`FRAME` {str(path)!r} is not a readable .npy file ({error})") from None
-    if not isinstance(frame, np.ndarray):
-        raise ValueError(f"`FRAME` {str(path)!r} is an .npz archive; save the frame with np.save")
+        frame = read_array(path)
+    except ValueError as error:
+        raise ValueError(f"`FRAME` {error}") from None
     if not (np.issubdtype(frame.dtype, np.integer) or np.issubdtype(frame.dtype, np.floating)):
         raise ValueError(f"`FRAME` {str(path)!r} holds {frame.dtype} values, not real numbers")
     return frame

@@ -8,13 +8,13 @@ vector of channels, per time step, with a time stamp per step.
 from __future__ import annotations
 
 import os
-import zipfile
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from taxel._validation import check_positive
+from taxel.io._arrays import read_archive, read_array
 from taxel.io._table import check_file, read_numeric_table
 
 __all__ = ["TactileSequence", "read_frame", "read_sequence"]
@@ -65,23 +65,6 @@ def _finite(path: Path, array: np.ndarray, what: str) -> np.ndarray:
         bad = int(array.size - np.count_nonzero(np.isfinite(array)))
         raise ValueError(f"{path}: {what} has {bad} NaN or infinite value(s)")
     return array
-
-
-def _load_npy(path: Path) -> np.ndarray:
-    try:
-        with path.open("rb") as handle:
-            return np.load(handle, allow_pickle=False)
-    except (ValueError, EOFError, OSError) as error:
-        raise ValueError(f"{path}: not a readable .npy file ({error})") from None
-
-
-def _load_npz(path: Path) -> dict[str, np.ndarray]:
-    # numpy leaves the file open when the archive is corrupt, so we own the handle
-    try:
-        with path.open("rb") as handle, np.load(handle, allow_pickle=False) as archive:
-            return {name: archive[name] for name in archive.files}
-    except (ValueError, EOFError, OSError, zipfile.BadZipFile) as error:
-        raise ValueError(f"{path}: not a readable .npz file ({error})") from None
 
 
 def _pick(path: Path, arrays: dict[str, np.ndarray], key: str | None) -> tuple[str, np.ndarray]:
@@ -157,9 +140,9 @@ def read_frame(path: str | os.PathLike[str], *, key: str | None = None) -> np.nd
     if suffix not in _FRAME_SUFFIXES:
         raise ValueError(f"{path}: unknown frame format {suffix!r}; use one of {_FRAME_SUFFIXES}")
     if suffix == ".npy":
-        frame = _load_npy(path)
+        frame = read_array(path)
     elif suffix == ".npz":
-        frame = _pick(path, _load_npz(path), key)[1]
+        frame = _pick(path, read_archive(path), key)[1]
     elif suffix == ".csv":
         table = read_numeric_table(path)
         if table.header is not None:
@@ -247,7 +230,7 @@ def read_sequence(
         names = tuple(name for index, name in enumerate(table.header or ()) if index != column)
         return TactileSequence(time, readings, names)
     if suffix == ".npz":
-        arrays = _load_npz(path)
+        arrays = read_archive(path)
         if "time" not in arrays:
             raise ValueError(f"{path}: no array named 'time'; the file holds: {sorted(arrays)}")
         time = _finite(path, arrays["time"], "'time'") * time_scale
