@@ -135,3 +135,117 @@ def test_stiffness_of_a_custom_ball_and_bad_files(capsys, small_files, tmp_path)
     assert main(["active", "stiffness", "--calibration", str(broken)]) == 2
     error = capsys.readouterr().err
     assert error.count("\n") == 1 and "lacks forces_n" in error
+
+
+@pytest.mark.parametrize(
+    ("procedure", "flag", "what"),
+    [
+        (["edge-radius", "--radius-mm", "2"], "--table", "an edge radius table"),
+        (["stiffness"], "--calibration", "a pad calibration"),
+        (["recognize", "--object", "washer"], "--library", "a model library"),
+    ],
+)
+def test_a_wrong_or_deeply_nested_file_names_its_flag(capsys, tmp_path, procedure, flag, what):
+    other = tmp_path / "other.json"
+    other.write_text('{"format": "something else"}')
+    deep = tmp_path / "deep.json"
+    deep.write_text("[" * 100_000 + "]" * 100_000)  # the JSON parser's recursion limit
+    assert main(["active", *procedure, flag, str(other)]) == 2
+    assert capsys.readouterr().err == f"taxel active: error: {flag} {str(other)!r} is not {what}\n"
+    assert main(["active", *procedure, flag, str(deep)]) == 2
+    assert capsys.readouterr().err == (
+        f"taxel active: error: {flag} {deep}: nested too deeply to be a file taxel wrote\n"
+    )
+
+
+@pytest.mark.parametrize(
+    ("arguments", "message"),
+    [
+        (["edge-radius", "--radius-mm=1e200"], "argument --radius-mm: must be at most 1000, got"),
+        (
+            ["stiffness", "--shape", "ball", "--size-mm=1e200", "--modulus-mpa", "1"],
+            "argument --size-mm: must be at most 1000, got 1e200",
+        ),
+        (
+            ["stiffness", "--shape", "block", "--size-mm", "20", "--modulus-mpa=1e-300"],
+            "argument --modulus-mpa: must be at least 1e-06, got 1e-300",
+        ),
+        (
+            ["stiffness", "--shape", "block", "--size-mm", "20", "--modulus-mpa=1e308"],
+            "argument --modulus-mpa: must be at most 1e+07, got 1e308",
+        ),
+        (["locate-corner", "--guess-error-mm=1e308"], "--guess-error-mm: must be at most 1000"),
+        (
+            ["stiffness", "--shape", "ball", "--size-mm", "20"],
+            "--shape ball needs its --size-mm and --modulus-mpa",
+        ),
+        (["recognize", "--object", "nosuch"], "argument --object: must be one of washer, coin"),
+        (["stiffness", "--object", "nosuch"], "argument --object: must be one of racquet ball"),
+        (
+            ["probe-plane", "--sensor", "reflective8x8"],
+            "--force 5: the finger with reflective8x8 presses at most 0.576 N (its full-scale "
+            "pressure over a quarter of its area); give --force of at most 0.576",
+        ),
+        (
+            ["locate-corner", "--force", "60"],
+            "--force 60: the finger with resistive16 presses at most 51.19 N",  # 51.1999..96
+        ),
+        (
+            ["edge-radius", "--radius-mm", "2", "--sensor", "capacitive4x4"],
+            "--forces 12 39: the finger with capacitive4x4 presses at most 5 N",
+        ),
+        (
+            ["stiffness", "--forces", "1", "1e308"],
+            "--forces 1 1e+308: the finger with vhdta128 presses at most 112.6 N",
+        ),
+    ],
+)
+def test_bad_values_are_refused_before_any_press(capsys, arguments, message):
+    try:
+        code = main(["active", *arguments])
+    except SystemExit as stop:  # argparse's own errors
+        code = stop.code
+    assert code == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and message in error, error
+
+
+def test_the_finger_limit_is_the_simulated_finger_s():
+    import numpy as np
+
+    from taxel.active import SimulatedFinger, make_ball
+    from taxel.cli._active import finger_limit
+    from taxel.frames import make_pose
+    from taxel.sensor import PRESET_NAMES, make_sensor
+
+    above_a_ball = make_pose(np.diag([1.0, -1.0, -1.0]), [0.0, 0.0, 0.05])
+    for name in PRESET_NAMES:
+        finger = SimulatedFinger(make_sensor(name), [make_ball("ball", 1e-3)], above_a_ball)
+        assert finger_limit(name) == finger.max_force, name
+
+
+def test_edge_radius_presses_at_the_given_forces(capsys, small_files, tmp_path):
+    from taxel.active import EdgeRadiusTable
+
+    table = small_files / "t.json"  # made at 12 and 39 N
+    args = ["active", "edge-radius", "--radius-mm", "3", "--forces", "8", "30"]
+    assert main([*args, "--table", str(table)]) == 2
+    assert capsys.readouterr().err == (
+        f"taxel active: error: --forces 8 30: the --table {table} was made with 12 39 N; "
+        "give those or another --table\n"
+    )
+    made = tmp_path / "t830.json"
+    assert main([*args, "--table", str(made), "--seed", "1"]) == 0
+    captured = capsys.readouterr()
+    assert "edge of radius 3 mm pressed at 8 N and 30 N on vhdta128" in captured.out
+    assert "estimated radius: " in captured.out
+    assert EdgeRadiusTable.load(made).forces.tolist() == [8.0, 30.0]
+
+
+def test_stiffness_refuses_a_pad_calibration_made_at_other_forces(capsys, small_files):
+    pad = small_files / "pad.json"  # made at 0.5, 12 and 39 N
+    assert main(["active", "stiffness", "--forces", "10", "30", "--calibration", str(pad)]) == 2
+    assert capsys.readouterr().err == (
+        f"taxel active: error: --forces 10 30: the --calibration {pad} was made at 12 39 N; "
+        "give those or another --calibration\n"
+    )

@@ -147,3 +147,34 @@ def test_a_failed_figure_keeps_the_old_one(tmp_path, capsys, washer, monkeypatch
     monkeypatch.undo()
     assert main(args) == 0
     assert cv2.imread(str(figure)).shape[:2] == (600, 600)
+
+
+@pytest.mark.parametrize(
+    ("content", "problem"),
+    [
+        ('{"translation": [0, 0, 0], "quaternion": null}', "'quaternion' must be a list of 4"),
+        ('{"translation": null, "rotvec": [0, 0, 0]}', "'translation' must be a list of 3"),
+        ('{"translation": [0, 0, 0], "rotvec": [0, 0, true]}', "'rotvec' must be a list of 3"),
+        ("[" * 100_000 + "]" * 100_000, "nested too deeply to be a pose"),
+    ],
+)
+def test_poses_that_are_no_poses_are_one_line(tmp_path, capsys, washer, content, problem):
+    frame, pose = tmp_path / "frame.npy", tmp_path / "pose.json"
+    np.save(frame, washer)
+    pose.write_text(content)
+    assert main(["features", str(frame), "--pitch", "2.5e-4", "--pose", str(pose)]) == 2
+    error = capsys.readouterr().err
+    assert error.startswith(f"taxel features: error: --pose {pose}: {problem}")
+    assert error.count("\n") == 1
+
+
+@pytest.mark.parametrize(
+    ("pitch", "message"), [("2", "must be at most 1, got 2"), ("1e-170", "must be at least 1e-09")]
+)
+def test_the_pitch_is_checked_as_the_flag(tmp_path, capsys, washer, pitch, message):
+    frame = tmp_path / "frame.npy"
+    np.save(frame, washer)
+    with pytest.raises(SystemExit) as stop:
+        main(["features", str(frame), "--pitch", pitch])
+    assert stop.value.code == 2
+    assert f"argument --pitch: {message}" in capsys.readouterr().err

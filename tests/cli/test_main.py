@@ -45,6 +45,8 @@ def test_the_parser_s_names_are_the_library_s():
     assert sensor.PRESET_NAMES == _arguments.PRESET_NAMES
     assert mechanics.INDENTER_NAMES == _arguments.INDENTER_NAMES
     assert active.NORMALIZATIONS == _arguments.NORMALIZATIONS
+    assert active.MODEL_NAMES == _arguments.MODEL_NAMES
+    assert tuple(active.DEFORMATION_OBJECTS) == _arguments.DEFORMATION_OBJECTS
 
 
 def test_help_does_not_load_the_library_s_layers():

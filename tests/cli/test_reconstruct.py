@@ -306,3 +306,30 @@ def test_a_failed_write_names_out_and_leaves_nothing(frame_file, tmp_path, capsy
     assert capsys.readouterr().err == (
         f"taxel reconstruct: error: --out {out} cannot be written (No space left on device)\n"
     )
+
+
+def test_a_calibration_of_another_kind_is_named(tmp_path, capsys):
+    from taxel.sensor import calibrate, make_sensor
+
+    frame = tmp_path / "frame.npy"
+    np.save(frame, np.full((16, 16), 100, np.int64))
+    text = tmp_path / "cal.json"
+    text.write_text('{"format": "taxel.pad_calibration"}')
+    out = tmp_path / "p.npy"
+    arguments = ["reconstruct", str(frame), "--sensor", "resistive16", "--out", str(out)]
+    assert main([*arguments, "--calibration", str(text)]) == 2
+    assert (
+        capsys.readouterr().err
+        == (  # not numpy's offer to unpickle it
+            f"taxel reconstruct: error: --calibration {text}: not a taxel calibration file (not an "
+            ".npz archive; `taxel calibrate` makes one)\n"
+        )
+    )
+    other = tmp_path / "cap.npz"
+    calibrate(make_sensor("capacitive4x4"), n_levels=6).save(other)
+    assert main([*arguments, "--calibration", str(other)]) == 2
+    assert capsys.readouterr().err == (
+        f"taxel reconstruct: error: `FRAME` {str(frame)!r} holds frames of (16, 16), but "
+        "--calibration is of capacitive4x4, whose frames are (4, 4)\n"
+    )
+    assert not out.exists()

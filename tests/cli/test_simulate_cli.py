@@ -63,7 +63,7 @@ def test_the_can_rim_crosses_the_sensor_by_default(tmp_path):
     ("extra", "match"),
     [
         (["--sensor", "resistive99", "--object", "pen"], "--sensor: must be one of vhdta128"),
-        (["--sensor", "resistive16", "--object", "cup"], "`name` must be one of pen"),
+        (["--sensor", "resistive16", "--object", "cup"], "argument --object: must be one of pen"),
         (["--sensor", "resistive16", "--object", "can", "--x", "0"], "is over no cell of the"),
         (["--sensor", "resistive16", "--object", "pen", "--x", "10"], "lowest point off the 32"),
         (["--sensor", "resistive16", "--object", "sphere", "--y", "-0.02"], "2.64 mm higher up"),
@@ -133,3 +133,13 @@ def test_a_read_only_folder_is_a_one_line_error(tmp_path, capsys, monkeypatch):
     assert capsys.readouterr().err == (
         f"taxel simulate: error: --out {out} cannot be written (Read-only file system)\n"
     )
+
+
+def test_a_force_beyond_the_models_is_refused_as_the_flag(tmp_path, capsys):
+    # at 1e200 N the contact pressure overflowed to inf, reported as `pressure` not finite
+    argv = ["simulate", "--sensor", "resistive16", "--object", "sphere", "--force", "1e200"]
+    with pytest.raises(SystemExit) as stop:
+        main([*argv, "--out", str(tmp_path / "f.npy")])
+    assert stop.value.code == 2
+    assert "argument --force: must be at most 1e+06, got 1e200" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []

@@ -195,3 +195,43 @@ def test_a_version_1_model_gets_the_features_of_version_1(folders, tmp_path, cap
         texture_signature(recording.readings, recording.time, recording.sliding_velocity)
     )
     np.testing.assert_array_equal(_features(Path(files[0]), data["settings"]), static)
+
+
+def test_segment_lengths_out_of_range_are_refused(folders, tmp_path, capsys):
+    train, _ = folders
+    model_path = tmp_path / "model.json"
+    with pytest.raises(SystemExit) as stop:  # an overflow inside the spectrum, before
+        main(["texture", "fit", str(train), "--out", str(model_path), "--segment-length=1e308"])
+    assert stop.value.code == 2
+    assert "--segment-length: must be at most 100, got 1e308" in _one_line_error(capsys)
+    # 20 mm/s at 35 Hz: 0.57 mm per sample; a shorter segment used to pass silently
+    code = main(["texture", "fit", str(train), "--out", str(model_path), "--segment-length=1e-4"])
+    assert code == 2
+    error = _one_line_error(capsys)
+    assert "_F150_V" in error
+    assert "a segment of 0.0001 m (--segment-length) is shorter than one sample's travel" in error
+    assert not model_path.exists()
+
+
+def test_a_constant_recording_is_named(folders, tmp_path, capsys):
+    train, test = folders
+    model_path = tmp_path / "model.json"
+    assert main(["texture", "fit", str(train), "--out", str(model_path)]) == 0
+    constant = test / "Ribbed_F150_V20mmps_9.csv"
+    rows = [f"{1000 + 28 * step}, 0, 65535, " + ", ".join(["120"] * 16) for step in range(300)]
+    constant.write_text("\n".join([HEADER, *rows]) + "\n")
+    good = test / "Coarse_F150_V-50mmps_1.csv"
+    assert main(["texture", "classify", str(good), str(constant), "--model", str(model_path)]) == 2
+    error = _one_line_error(capsys)
+    assert error.startswith(f"taxel texture: error: {constant}: ") and "constant" in error
+
+
+def test_a_deeply_nested_model_is_refused(folders, tmp_path, capsys):
+    _, test = folders
+    deep = tmp_path / "deep.json"
+    deep.write_text("[" * 100_000 + "]" * 100_000)
+    recording = str(next(test.iterdir()))
+    assert main(["texture", "classify", recording, "--model", str(deep)]) == 2
+    assert _one_line_error(capsys) == (
+        f"taxel texture: error: --model {deep}: nested too deeply to be a file taxel wrote\n"
+    )

@@ -11,12 +11,28 @@ import argparse
 import json
 import math
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
-from taxel.cli._arguments import finite, integer_in, positive, preset, real_in, seed
+from taxel.cli._arguments import (
+    DEFORMATION_OBJECTS,
+    MODEL_NAMES,
+    choice,
+    finite,
+    integer_in,
+    positive,
+    positive_in,
+    preset,
+    real_in,
+    seed,
+)
+from taxel.cli._files import reading
+from taxel.cli._main import CommandLineError
 
-__all__ = ["register"]
+__all__ = ["finger_limit", "register"]
+
+_EDGE_FORCES = (12.0, 39.0)  # taxel.active's DEFAULT_FORCES: the seed's light and firm presses
+_TOUCH = 0.5  # measure_deformation's touch_force [N], the first press of a pad calibration
 
 
 def _emit(arguments: argparse.Namespace, payload: dict[str, Any], lines: list[str]) -> int:
@@ -28,9 +44,36 @@ def _emit(arguments: argparse.Namespace, payload: dict[str, Any], lines: list[st
     return 0
 
 
+def finger_limit(sensor: str) -> float:
+    """The largest force [N] the simulated finger carrying the preset `sensor` presses with.
+
+    `taxel.active.SimulatedFinger`'s default: the sensor's full-scale pressure over a
+    quarter of its active area (a test checks that the two agree).
+    """
+    from taxel.sensor import make_sensor
+
+    chosen = make_sensor(sensor)
+    return float(chosen.full_scale * chosen.geometry.active_area / 4)
+
+
+def _check_forces(flag: str, forces: Sequence[float], sensor: str) -> None:
+    """Refuse, before any press, forces beyond what the finger with `sensor` may press."""
+    limit = finger_limit(sensor)
+    if max(forces) > limit:
+        given = " ".join(f"{force:g}" for force in forces)
+        step = 10.0 ** (math.floor(math.log10(limit)) - 3)  # four significant digits
+        largest = math.floor(limit / step) * step
+        shown = f"{largest if largest <= limit else largest - step:.4g}"  # a force it takes
+        raise CommandLineError(
+            f"{flag} {given}: the finger with {sensor} presses at most {shown} N (its "
+            f"full-scale pressure over a quarter of its area); give {flag} of at most {shown}"
+        )
+
+
 def _probe_plane(arguments: argparse.Namespace) -> int:
     from taxel.active import plane_probing_trial
 
+    _check_forces("--force", [arguments.force], arguments.sensor)
     trial = plane_probing_trial(
         arguments.sensor,
         n_probes=arguments.probes,
@@ -53,6 +96,7 @@ def _probe_plane(arguments: argparse.Namespace) -> int:
 def _locate_corner(arguments: argparse.Namespace) -> int:
     from taxel.active import corner_probing_trial
 
+    _check_forces("--force", [arguments.force], arguments.sensor)
     trial = corner_probing_trial(
         arguments.sensor,
         guess_error=arguments.guess_error_mm * 1e-3,
@@ -91,7 +135,8 @@ def _file_or_build(
     from taxel.io import check_new_file
 
     if Path(path).exists() and not Path(path).is_dir():
-        return load(path)
+        with reading(option, path):
+            return load(path)
     check_new_file(path, suffix=".json", name=option)
     sys.stderr.write(f"building the {what} (this takes a while); saving it to {path}\n")
     return build(path)
@@ -100,13 +145,26 @@ def _file_or_build(
 def _edge_radius(arguments: argparse.Namespace) -> int:
     from taxel.active import EdgeRadiusTable, build_edge_radius_table, measure_edge_radius
 
+    forces = _EDGE_FORCES if arguments.forces is None else tuple(arguments.forces)
+    _check_forces("--forces", forces, arguments.sensor)
     table = _file_or_build(
         arguments.table,
         EdgeRadiusTable.load,
-        lambda path: build_edge_radius_table(sensor=arguments.sensor, path=path),
+        lambda path: build_edge_radius_table(sensor=arguments.sensor, forces=forces, path=path),
         "edge-radius table",
         "--table",
     )
+    if table is not None:
+        made = tuple(float(force) for force in table.forces)
+        if arguments.forces is not None and made != forces:
+            raise CommandLineError(
+                f"--forces {' '.join(f'{f:g}' for f in forces)}: the --table {arguments.table} "
+                f"was made with {' '.join(f'{f:g}' for f in made)} N; give those or another "
+                "--table"
+            )
+        forces = made
+    elif arguments.forces is not None:  # the default table is made at the default forces
+        table = build_edge_radius_table(sensor=arguments.sensor, forces=forces)
     result = measure_edge_radius(
         arguments.radius_mm * 1e-3,
         table=table,
@@ -116,8 +174,9 @@ def _edge_radius(arguments: argparse.Namespace) -> int:
         rng=arguments.seed,
     )
     lines = [
-        f"edge of radius {arguments.radius_mm:g} mm pressed at 12 N and 39 N on "
-        f"{arguments.sensor}",
+        f"edge of radius {arguments.radius_mm:g} mm pressed at "
+        + " N and ".join(f"{force:g}" for force in forces)
+        + f" N on {arguments.sensor}",
         f"estimated radius: {result.radius * 1e3:.3f} mm "
         f"(+/- {result.radius_uncertainty * 1e3:.3f} mm)",
         f"nearest table entry: {result.nearest_radius * 1e3:g} mm",
@@ -131,14 +190,30 @@ def _stiffness(arguments: argparse.Namespace) -> int:
     from taxel.active import PadCalibration, calibrate_pad, measure_deformation
 
     def build(path: str) -> Any:
-        calibration = calibrate_pad(arguments.sensor)
+        calibration = calibrate_pad(arguments.sensor, forces=(_TOUCH, *arguments.forces))
         calibration.save(path)
         return calibration
 
+    custom = arguments.shape is not None
+    if custom and (arguments.size_mm is None or arguments.modulus_mpa is None):
+        raise CommandLineError(
+            f"--shape {arguments.shape} needs its --size-mm and --modulus-mpa "
+            "(and optionally --poisson-ratio)"
+        )
+    _check_forces("--forces", arguments.forces, arguments.sensor)
     calibration = _file_or_build(
         arguments.calibration, PadCalibration.load, build, "pad calibration", "--calibration"
     )
-    custom = arguments.shape is not None
+    if calibration is not None:
+        made = [float(force) for force in calibration.forces[-2:]]
+        if not math.isclose(made[0], arguments.forces[0], rel_tol=1e-3) or not math.isclose(
+            made[1], arguments.forces[1], rel_tol=1e-3
+        ):
+            raise CommandLineError(
+                f"--forces {' '.join(f'{f:g}' for f in arguments.forces)}: the --calibration "
+                f"{arguments.calibration} was made at {' '.join(f'{f:g}' for f in made)} N; "
+                "give those or another --calibration"
+            )
     result = measure_deformation(
         "custom " + arguments.shape if custom else arguments.object,
         sensor=arguments.sensor,
@@ -211,7 +286,13 @@ def register(commands: argparse._SubParsersAction) -> None:
     )
     plane.add_argument("--sensor", type=preset, default="resistive16", help="static sensor preset")
     plane.add_argument("--probes", type=integer_in(3), default=5, help="number of presses (>= 3)")
-    plane.add_argument("--force", type=positive, default=5.0, help="press force [N]")
+    plane.add_argument(
+        "--force",
+        type=positive,
+        default=5.0,
+        help="press force [N] (5), at most the finger's limit: the sensor's full-scale "
+        "pressure over a quarter of its area (reflective8x8: 0.576 N)",
+    )
     plane.add_argument(
         "--face-tilt-deg",
         type=real_in(0.0, 45.0),
@@ -236,10 +317,16 @@ def register(commands: argparse._SubParsersAction) -> None:
         default=3,
         help="presses on each face (>= 3)",
     )
-    corner.add_argument("--force", type=positive, default=5.0, help="press force [N]")
+    corner.add_argument(
+        "--force",
+        type=positive,
+        default=5.0,
+        help="press force [N] (5), at most the finger's limit: the sensor's full-scale "
+        "pressure over a quarter of its area (reflective8x8: 0.576 N)",
+    )
     corner.add_argument(
         "--guess-error-mm",
-        type=positive,
+        type=positive_in(0.0, 1000.0),
         default=3.0,
         help="how far the starting guess is from the corner [mm]",
     )
@@ -252,9 +339,18 @@ def register(commands: argparse._SubParsersAction) -> None:
     )
     edge.add_argument(
         "--radius-mm",
-        type=positive,
+        type=positive_in(0.0, 1000.0),
         required=True,
-        help="radius of the simulated edge to measure [mm]",
+        help="radius of the simulated edge to measure [mm], at most 1000",
+    )
+    edge.add_argument(
+        "--forces",
+        type=positive,
+        nargs=2,
+        metavar=("LIGHT", "FIRM"),
+        help="the light and the firm press [N] (12 39); at most the finger's limit, the "
+        "sensor's full-scale pressure over a quarter of its area (capacitive4x4: 5 N); a "
+        "--table is made at its forces",
     )
     edge.add_argument("--sensor", type=preset, default="vhdta128", help="sensor preset")
     edge.add_argument(
@@ -275,11 +371,18 @@ def register(commands: argparse._SubParsersAction) -> None:
     stiff.add_argument(
         "--object",
         default="racquet ball",
-        help="named object (racquet ball, acrylic sphere, steel ball, ...)",
+        type=choice(DEFORMATION_OBJECTS),
+        help=f"named object ({', '.join(DEFORMATION_OBJECTS)})",
     )
     stiff.add_argument("--shape", choices=("ball", "block"), help="or a custom ball or block")
-    stiff.add_argument("--size-mm", type=positive, help="ball radius or block edge [mm]")
-    stiff.add_argument("--modulus-mpa", type=positive, help="its Young's modulus [MPa]")
+    stiff.add_argument(
+        "--size-mm", type=positive_in(0.0, 1000.0), help="ball radius or block edge [mm], <= 1000"
+    )
+    stiff.add_argument(
+        "--modulus-mpa",
+        type=positive_in(1e-6, 1e7),
+        help="its Young's modulus [MPa], 1e-6 (1 Pa) to 1e7 (10 TPa)",
+    )
     stiff.add_argument("--poisson-ratio", type=real_in(-0.999, 0.5), help="its Poisson's ratio")
     stiff.add_argument(
         "--forces",
@@ -287,7 +390,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         nargs=2,
         default=(12.0, 39.0),
         metavar=("LIGHT", "FIRM"),
-        help="the two forces [N] (12 39)",
+        help="the two forces [N] (12 39), at most the finger's limit (see edge-radius)",
     )
     stiff.add_argument("--sensor", type=preset, default="vhdta128", help="sensor preset")
     stiff.add_argument(
@@ -304,7 +407,8 @@ def register(commands: argparse._SubParsersAction) -> None:
     recognize.add_argument(
         "--object",
         required=True,
-        help="the model to touch (washer, coin, key blank, bolt head, " "box corner, pen, can)",
+        type=choice(MODEL_NAMES),
+        help=f"the model to touch ({', '.join(MODEL_NAMES)})",
     )
     recognize.add_argument("--sensor", type=preset, default="vhdta128", help="sensor preset")
     recognize.add_argument(

@@ -7,21 +7,25 @@ import math
 from collections.abc import Callable
 
 __all__ = [
+    "DEFORMATION_OBJECTS",
     "INDENTER_NAMES",
+    "MODEL_NAMES",
     "NORMALIZATIONS",
     "PRESET_NAMES",
+    "choice",
     "finite",
     "integer_in",
     "positive",
+    "positive_in",
     "preset",
     "real_in",
     "seed",
 ]
 
-# `taxel.sensor.PRESET_NAMES`, `taxel.mechanics.INDENTER_NAMES` and
-# `taxel.active.NORMALIZATIONS`, written out so that building the parser (``taxel --help``,
-# and every command) does not import those layers, whose SciPy dependencies take seconds to
-# load; a test checks they agree.
+# `taxel.sensor.PRESET_NAMES`, `taxel.mechanics.INDENTER_NAMES`, `taxel.active.NORMALIZATIONS`,
+# `taxel.active.MODEL_NAMES` and `taxel.active.DEFORMATION_OBJECTS`, written out so that
+# building the parser (``taxel --help``, and every command) does not import those layers,
+# whose SciPy dependencies take seconds to load; a test checks they agree.
 PRESET_NAMES = (
     "vhdta128",
     "harmon10x20",
@@ -48,6 +52,16 @@ INDENTER_NAMES = (
     "foam",
     "rasp",
     "screen",
+)
+
+MODEL_NAMES = ("washer", "coin", "key blank", "bolt head", "box corner", "pen", "can")
+DEFORMATION_OBJECTS = (
+    "racquet ball",
+    "acrylic sphere",
+    "steel ball",
+    "rubber ball",
+    "foam block",
+    "wood block",
 )
 
 
@@ -81,6 +95,23 @@ def positive(text: str) -> float:
     return value
 
 
+def positive_in(low: float, high: float) -> Callable[[str], float]:
+    """A number > 0 within physical bounds [low, high] (beyond them the models overflow).
+
+    A value <= 0 is refused as by `positive`; one outside the bounds names them.
+    """
+
+    def parse(text: str) -> float:
+        value = positive(text)
+        if value < low:
+            raise argparse.ArgumentTypeError(f"must be at least {low:g}, got {text}")
+        if value > high:
+            raise argparse.ArgumentTypeError(f"must be at most {high:g}, got {text}")
+        return value
+
+    return parse
+
+
 def real_in(low: float, high: float) -> Callable[[str], float]:
     """A number in [low, high]."""
 
@@ -111,8 +142,17 @@ def seed(text: str) -> int:
     return integer_in(0)(text)
 
 
+def choice(names: tuple[str, ...]) -> Callable[[str], str]:
+    """One of `names` (which may hold spaces: argparse's choices would list them unquoted)."""
+
+    def parse(text: str) -> str:
+        if text not in names:
+            raise argparse.ArgumentTypeError(f"must be one of {', '.join(names)}; got {text!r}")
+        return text
+
+    return parse
+
+
 def preset(text: str) -> str:
     """The name of a sensor preset (`taxel.sensor.PRESET_NAMES`)."""
-    if text not in PRESET_NAMES:
-        raise argparse.ArgumentTypeError(f"must be one of {', '.join(PRESET_NAMES)}; got {text!r}")
-    return text
+    return choice(PRESET_NAMES)(text)

@@ -6,7 +6,7 @@ import argparse
 import sys
 
 from taxel.cli._arguments import preset, seed
-from taxel.cli._output import writing
+from taxel.cli._files import writing
 
 __all__ = ["register"]
 

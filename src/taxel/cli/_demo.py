@@ -5,8 +5,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from taxel.cli._files import writing
 from taxel.cli._main import CommandLineError
-from taxel.cli._output import writing
 
 __all__ = ["register"]
 

@@ -11,8 +11,8 @@ from typing import Any
 
 import numpy as np
 
-from taxel.cli._arguments import positive, preset
-from taxel.cli._output import writing
+from taxel.cli._arguments import positive, positive_in, preset
+from taxel.cli._files import writing
 
 __all__ = ["register"]
 
@@ -21,9 +21,25 @@ def _load_pose(path: Path) -> np.ndarray:
     """The --pose file's 4x4 pose; any problem with it is a ValueError naming --pose."""
     try:
         return _read_pose(path)
+    except RecursionError:
+        raise ValueError(f"--pose {path}: nested too deeply to be a pose") from None
     except (ValueError, TypeError, KeyError, OSError) as error:
         message = error.strerror if isinstance(error, OSError) and error.strerror else error
         raise ValueError(f"--pose {path}: {message}") from None
+
+
+def _numbers(data: dict[str, Any], key: str, length: int) -> list[float]:
+    """``data[key]``, a list of `length` numbers, or a ValueError naming the key."""
+    value = data[key]
+    if not (
+        isinstance(value, list)
+        and len(value) == length
+        and all(isinstance(item, int | float) and not isinstance(item, bool) for item in value)
+    ):
+        text = json.dumps(value)
+        text = text if len(text) <= 40 else text[:37] + "..."
+        raise ValueError(f"{key!r} must be a list of {length} numbers, got {text}")
+    return value
 
 
 def _read_pose(path: Path) -> np.ndarray:
@@ -45,10 +61,10 @@ def _read_pose(path: Path) -> np.ndarray:
         if "quaternion" in data and "rotvec" in data:
             raise ValueError("give a quaternion or a rotvec, not both")
         if "quaternion" in data:
-            rotation = Rotation.from_quat(data["quaternion"])  # (x, y, z, w)
+            rotation = Rotation.from_quat(_numbers(data, "quaternion", 4))  # (x, y, z, w)
         elif "rotvec" in data:
-            rotation = Rotation.from_rotvec(data["rotvec"])
-        return make_pose(rotation, data["translation"])
+            rotation = Rotation.from_rotvec(_numbers(data, "rotvec", 3))
+        return make_pose(rotation, _numbers(data, "translation", 3))
     raise ValueError(
         "a pose is a 4x4 list, {'matrix': 4x4} or "
         "{'translation': [x, y, z], 'quaternion': [x, y, z, w] | 'rotvec': [...]}"
@@ -190,7 +206,9 @@ def register(commands: Any) -> None:
     parser.add_argument(
         "--key", metavar="NAME", help="the frame's array in an .npz holding several"
     )
-    parser.add_argument("--pitch", type=positive, metavar="METRES", help="taxel pitch [m]")
+    parser.add_argument(
+        "--pitch", type=positive_in(1e-9, 1.0), metavar="METRES", help="taxel pitch [m], 1e-9 to 1"
+    )
     parser.add_argument(
         "--sensor",
         type=preset,

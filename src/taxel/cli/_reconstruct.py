@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from taxel.cli._arguments import integer_in, positive
-from taxel.cli._output import writing
+from taxel.cli._files import reading, writing
 
 __all__ = ["register"]
 
@@ -62,6 +62,18 @@ def _load_frame(path: Path) -> np.ndarray:
     return frame
 
 
+def _check_archive(path: Path) -> None:
+    """Refuse a --calibration that is no zip archive (numpy would offer to unpickle it)."""
+    if not path.is_file():
+        return  # Calibration.load names what is missing
+    with path.open("rb") as handle:
+        if handle.read(4) != b"PK\x03\x04":
+            raise ValueError(
+                f"--calibration {path}: not a taxel calibration file (not an .npz archive; "
+                "`taxel calibrate` makes one)"
+            )
+
+
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.reconstruction import (
         FORWARD_MODEL_PRESETS,
@@ -85,7 +97,15 @@ def _run(arguments: argparse.Namespace) -> int:
     if arguments.calibration is not None:
         from taxel.sensor import Calibration
 
-        frame = Calibration.load(arguments.calibration).felt_pressure(frame)
+        _check_archive(Path(arguments.calibration))
+        with reading("--calibration", arguments.calibration):
+            calibration = Calibration.load(arguments.calibration)
+        if frame.shape[-2:] != tuple(calibration.shape):
+            raise ValueError(
+                f"`FRAME` {str(path)!r} holds frames of {frame.shape[-2:]}, but --calibration "
+                f"is of {calibration.sensor_name}, whose frames are {tuple(calibration.shape)}"
+            )
+        frame = calibration.felt_pressure(frame)
     elif np.issubdtype(stored, np.integer):
         raise ValueError(
             f"`FRAME` {str(path)!r} holds raw codes ({stored}); give the sensor's "

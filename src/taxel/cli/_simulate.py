@@ -21,14 +21,15 @@ import numpy as np
 from taxel.cli._arguments import (
     INDENTER_NAMES,
     PRESET_NAMES,
+    choice,
     finite,
     integer_in,
-    positive,
+    positive_in,
     preset,
     seed,
 )
+from taxel.cli._files import cannot_write
 from taxel.cli._main import CommandLineError
-from taxel.cli._output import cannot_write
 from taxel.io import check_new_file, write_files
 
 __all__ = ["register"]
@@ -208,9 +209,15 @@ def register(commands: Any) -> None:
     parser.add_argument(
         "--sensor", type=preset, required=True, metavar="PRESET", help="sensor preset"
     )
-    parser.add_argument("--object", required=True, metavar="NAME", help="indenter name")
     parser.add_argument(
-        "--force", required=True, type=positive, metavar="NEWTONS", help="normal force [N]"
+        "--object", required=True, type=choice(INDENTER_NAMES), metavar="NAME", help="indenter"
+    )
+    parser.add_argument(
+        "--force",
+        required=True,
+        type=positive_in(0.0, 1e6),
+        metavar="NEWTONS",
+        help="normal force [N], at most 1e6",
     )
     parser.add_argument(
         "--x",

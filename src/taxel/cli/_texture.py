@@ -20,8 +20,8 @@ from typing import Any
 
 import numpy as np
 
-from taxel.cli._arguments import NORMALIZATIONS, integer_in, positive, real_in
-from taxel.cli._output import writing
+from taxel.cli._arguments import NORMALIZATIONS, integer_in, positive_in, real_in
+from taxel.cli._files import reading, writing
 
 __all__ = ["register"]
 
@@ -41,13 +41,20 @@ def _features(path: Path, settings: Mapping[str, Any]) -> np.ndarray:
 
     recording = read_fabricslide(path)
     options = {name: settings[name] for name in _SIGNATURE_SETTINGS if name in settings}
+    if "segment_length" in options:
+        step = abs(recording.sliding_velocity) / recording.sampling_rate
+        if options["segment_length"] < step:
+            raise ValueError(
+                f"{path}: a segment of {options['segment_length']:g} m (--segment-length) is "
+                f"shorter than one sample's travel here, {step:.3g} m"
+            )
     try:
         signature = texture_signature(
             recording.readings, recording.time, recording.sliding_velocity, **options
         )
+        return texture_features(signature, per_taxel=bool(settings.get("per_taxel", True)))
     except ValueError as error:
         raise ValueError(f"{path}: {error}") from None
-    return texture_features(signature, per_taxel=bool(settings.get("per_taxel", True)))
 
 
 def _fit(arguments: argparse.Namespace) -> int:
@@ -93,7 +100,8 @@ def _fit(arguments: argparse.Namespace) -> int:
 def _classify(arguments: argparse.Namespace) -> int:
     from taxel.active import TextureClassifier
 
-    model = TextureClassifier.load(arguments.model)
+    with reading("--model", arguments.model):
+        model = TextureClassifier.load(arguments.model)
     features = np.array([_features(Path(path), model.settings) for path in arguments.files])
     predictions = model.predict(features)
     if arguments.json:
@@ -137,10 +145,11 @@ def register(commands: Any) -> None:
     )
     fit.add_argument(
         "--segment-length",
-        type=positive,
+        type=positive_in(0.0, 100.0),
         default=0.2,
         metavar="METRES",
-        help="travel per spectral segment [m] (0.2)",
+        help="travel per spectral segment [m] (0.2): at least one sample's travel and at most "
+        "a recording's",
     )
     fit.add_argument(
         "--trim-fraction",

@@ -1,4 +1,4 @@
-"""Writing the files a command was asked for: a failed write names the flag and the file."""
+"""The files a command reads and writes: their errors name the flag, not the API's parameter."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from pathlib import Path
 
 from taxel.cli._main import CommandLineError
 
-__all__ = ["cannot_write", "writing"]
+__all__ = ["cannot_write", "reading", "writing"]
 
 
 def cannot_write(error: OSError, flags: Mapping[Path, str]) -> CommandLineError:
@@ -42,3 +42,26 @@ def writing(flag: str, *paths: str | os.PathLike[str]) -> Iterator[None]:
         if error.filename is None or Path(str(error.filename)) not in flags:
             raise
         raise cannot_write(error, flags) from None
+
+
+@contextmanager
+def reading(flag: str, path: str | os.PathLike[str]) -> Iterator[None]:
+    """Errors loading `path` (a --table, --model, ... file) as one line naming `flag`.
+
+    The loaders' messages name their parameter, `` `path` ``, or begin with the file's
+    name; here the flag is named. A JSON file nested too deeply for the parser (a
+    RecursionError) is refused.
+    """
+    try:
+        yield
+    except RecursionError:
+        raise CommandLineError(
+            f"{flag} {path}: nested too deeply to be a file taxel wrote"
+        ) from None
+    except ValueError as error:
+        message = str(error)
+        if message.startswith("`path` "):
+            raise ValueError(f"{flag} {message.removeprefix('`path` ')}") from None
+        if message.startswith(f"{path}:"):
+            raise ValueError(f"{flag} {message}") from None
+        raise
