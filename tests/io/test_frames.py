@@ -244,3 +244,28 @@ def test_read_array_keeps_the_stored_type_and_shape(tmp_path):
     np.save(tmp_path / "batch.npy", stored)
     array = read_array(tmp_path / "batch.npy")
     assert array.dtype == np.int16 and np.array_equal(array, stored)
+
+
+def test_a_boolean_frame_is_no_readings(tmp_path):
+    np.save(tmp_path / "mask.npy", GRID > 20)
+    expected = r"mask\.npy: the frame holds bool data, not real numbers"
+    with pytest.raises(ValueError, match=expected):
+        read_frame(tmp_path / "mask.npy")
+
+
+def test_a_key_is_only_for_an_archive(tmp_path):
+    np.save(tmp_path / "frame.npy", GRID)
+    expected = r"frame\.npy: `key` names an array of an \.npz archive, not of a \.npy file"
+    with pytest.raises(ValueError, match=expected):
+        read_frame(tmp_path / "frame.npy", key="pressure")
+
+
+def test_a_corrupt_image_is_one_error_without_opencv_s_log(tmp_path, capfd):
+    path = tmp_path / "corrupt.png"
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + b"x" * 50)  # a chunk claiming gigabytes
+    with pytest.raises(ValueError, match=r"corrupt\.png: cannot decode the image"):
+        read_frame(path)
+    assert capfd.readouterr().err == ""  # OpenCV wrote "read_chunk ... too large" here
+    from cv2.utils import logging as cv_logging
+
+    assert cv_logging.getLogLevel() != cv_logging.LOG_LEVEL_SILENT  # restored

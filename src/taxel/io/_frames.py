@@ -53,9 +53,7 @@ class TactileSequence:
 def _finite(path: Path, array: np.ndarray, what: str) -> np.ndarray:
     """Return `array` as float64, or raise naming the file when it is not finite numbers."""
     if array.dtype == object or not (
-        np.issubdtype(array.dtype, np.integer)
-        or np.issubdtype(array.dtype, np.floating)
-        or array.dtype == np.bool_
+        np.issubdtype(array.dtype, np.integer) or np.issubdtype(array.dtype, np.floating)
     ):
         raise ValueError(f"{path}: {what} holds {array.dtype} data, not real numbers")
     array = np.asarray(array, dtype=np.float64)
@@ -81,8 +79,15 @@ def _pick(path: Path, arrays: dict[str, np.ndarray], key: str | None) -> tuple[s
 
 def _read_image(path: Path) -> np.ndarray:
     import cv2  # heavy; imported only when an image is read
+    from cv2.utils import logging as cv_logging
 
-    image = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
+    # OpenCV logs a corrupt file's problems to stderr itself; the ValueError below says it
+    previous = cv_logging.getLogLevel()
+    cv_logging.setLogLevel(cv_logging.LOG_LEVEL_SILENT)
+    try:
+        image = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
+    finally:
+        cv_logging.setLogLevel(previous)
     if image is None:
         raise ValueError(f"{path}: cannot decode the image (corrupt or truncated file?)")
     if path.suffix.lower() in (".tif", ".tiff") and cv2.imcount(str(path)) > 1:
@@ -102,7 +107,8 @@ def read_frame(path: str | os.PathLike[str], *, key: str | None = None) -> np.nd
     path : str or path-like
         The file; its suffix selects the format.
     key : str, optional
-        For .npz archives holding several arrays, the name of the frame's array.
+        For .npz archives holding several arrays, the name of the frame's array (refused
+        for other formats).
 
     Returns
     -------
@@ -116,9 +122,10 @@ def read_frame(path: str | os.PathLike[str], *, key: str | None = None) -> np.nd
         When `path` does not exist.
     ValueError
         Naming the file (and line, for csv) when the format is unknown, the file is empty,
-        truncated, corrupt, ragged or non-numeric, holds NaN or inf, is not 2-D, is a colour
-        image, an .npz holds several arrays and `key` is not given, or a csv has a time
-        column (that is a sequence: use `read_sequence`).
+        truncated, corrupt, ragged or non-numeric (booleans included), holds NaN or inf, is
+        not 2-D, is a colour image, an .npz holds several arrays and `key` is not given (or
+        `key` is given for another format), or a csv has a time column (that is a sequence:
+        use `read_sequence`).
 
     Notes
     -----
@@ -139,6 +146,10 @@ def read_frame(path: str | os.PathLike[str], *, key: str | None = None) -> np.nd
     suffix = path.suffix.lower()
     if suffix not in _FRAME_SUFFIXES:
         raise ValueError(f"{path}: unknown frame format {suffix!r}; use one of {_FRAME_SUFFIXES}")
+    if key is not None and suffix != ".npz":
+        raise ValueError(
+            f"{path}: `key` names an array of an .npz archive, not of a {suffix} file"
+        )
     if suffix == ".npy":
         frame = read_array(path)
     elif suffix == ".npz":
