@@ -85,7 +85,7 @@ def test_known_noise_finds_a_texture_that_covers_the_array(tmp_path, capsys):
         ("frame", ["--pitch", "1e-3", "--pose", "MISSING"], "--pose MISSING: No such file"),
         ("frame", ["--pitch", "1e-3", "--pose", "BOTH"], "not both"),
         ("frame", ["--pitch", "1e-3", "--pose", "ZERO"], "--pose ZERO: "),
-        ("archive", ["--pitch", "1e-3"], "holds 2 arrays (a, b); choose one with `key`"),
+        ("archive", ["--pitch", "1e-3"], "holds 2 arrays (a, b); choose one with --key"),
         ("archive", ["--pitch", "1e-3", "--key", "c"], "no array named 'c'"),
         ("complex", ["--pitch", "1e-3"], "complex128 data, not real numbers"),
         ("nan", ["--pitch", "1e-3"], "finite"),
@@ -178,3 +178,25 @@ def test_the_pitch_is_checked_as_the_flag(tmp_path, capsys, washer, pitch, messa
         main(["features", str(frame), "--pitch", pitch])
     assert stop.value.code == 2
     assert f"argument --pitch: {message}" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("setup", "extra", "message"),
+    [
+        ("npy", ["--key", "nonsense"], "--key names an array of an .npz archive, not of a .npy"),
+        ("archive", [], "holds 2 arrays (a, b); choose one with --key"),
+        ("mask", [], "the frame holds bool data, not real numbers"),
+        ("huge", [], "values up to 1e+300, beyond the 1e+15 the features handle"),
+    ],
+)
+def test_frames_the_features_cannot_take(tmp_path, capsys, washer, setup, extra, message):
+    path = tmp_path / ("frame.npz" if setup == "archive" else "frame.npy")
+    if setup == "archive":
+        np.savez(path, a=washer, b=washer)
+    else:
+        frame = {"npy": washer, "mask": washer > 100, "huge": washer * 1e300 / washer.max()}
+        np.save(path, frame[setup])
+    assert main(["features", str(path), "--pitch", "2.5e-4", *extra]) == 2
+    error = capsys.readouterr().err
+    assert error.startswith(f"taxel features: error: {path}: ") and message in error
+    assert error.count("\n") == 1

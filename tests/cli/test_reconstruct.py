@@ -321,8 +321,8 @@ def test_a_calibration_of_another_kind_is_named(tmp_path, capsys):
     assert (
         capsys.readouterr().err
         == (  # not numpy's offer to unpickle it
-            f"taxel reconstruct: error: --calibration {text}: not a taxel calibration file (not an "
-            ".npz archive; `taxel calibrate` makes one)\n"
+            f"taxel reconstruct: error: --calibration {text}: not a taxel calibration file "
+            "(not an .npz archive; `taxel calibrate` makes one)\n"
         )
     )
     other = tmp_path / "cap.npz"
@@ -333,3 +333,36 @@ def test_a_calibration_of_another_kind_is_named(tmp_path, capsys):
         "--calibration is of capacitive4x4, whose frames are (4, 4)\n"
     )
     assert not out.exists()
+
+
+def test_pressures_beyond_any_contact_are_refused(frame_file, tmp_path, capsys):
+    # at 1e154 Pa the norms overflowed: --json printed Infinity, stderr RuntimeWarnings
+    huge = tmp_path / "huge.npy"
+    np.save(huge, np.load(frame_file) * 1e150)
+    out = tmp_path / "p.npy"
+    argv = ["reconstruct", str(huge), "--sensor", "resistive16", "--out", str(out), "--json"]
+    assert main(argv) == 2
+    captured = capsys.readouterr()
+    assert captured.out == "" and captured.err.count("\n") == 1
+    assert f"`FRAME` {str(huge)!r} holds pressures up to " in captured.err
+    assert "beyond any contact (at most 1e+12 Pa" in captured.err
+    assert not out.exists()
+
+
+def test_the_summary_has_no_value_json_lacks():
+    from taxel.cli._reconstruct import _finite_or_none
+
+    values = np.array([[1.5, np.inf], [np.nan, -2.0]])
+    assert _finite_or_none(values) == [[1.5, None], [None, -2.0]]
+    assert _finite_or_none(np.float64(-np.inf)) is None
+
+
+def test_oversampling_is_refused_beyond_what_the_model_takes(frame_file, tmp_path, capsys):
+    out = str(tmp_path / "p.npy")
+    with pytest.raises(SystemExit) as stop:
+        main(["reconstruct", str(frame_file), "--sensor", "resistive16", "--oversampling", "9"])
+    assert stop.value.code == 2
+    assert "argument --oversampling: must lie in 1..8, got 9" in capsys.readouterr().err
+    argv = ["reconstruct", str(frame_file), "--sensor", "resistive16", "--out", out]
+    assert main([*argv, "--oversampling", "2"]) == 0
+    assert np.load(out).shape == (32, 32)

@@ -16,6 +16,10 @@ from taxel.cli._files import writing
 
 __all__ = ["register"]
 
+# taxel.features computes in single precision, where sums of squares of readings above
+# about 1e17 overflow (a RuntimeWarning, then NaN or inf); no sensor reads 1e15 in any unit
+_LARGEST_VALUE = 1e15
+
 
 def _load_pose(path: Path) -> np.ndarray:
     """The --pose file's 4x4 pose; any problem with it is a ValueError naming --pose."""
@@ -170,7 +174,16 @@ def _run(arguments: argparse.Namespace) -> int:
             name="--figure",
             inputs=(arguments.file,),
         )
-    image = read_frame(arguments.file, key=arguments.key)
+    try:
+        image = read_frame(arguments.file, key=arguments.key)
+    except ValueError as error:  # read_frame names its parameter; here it is the flag
+        raise ValueError(str(error).replace("`key`", "--key")) from None
+    largest = float(np.abs(image).max())
+    if largest > _LARGEST_VALUE:
+        raise ValueError(
+            f"{arguments.file}: values up to {largest:.3g}, beyond the {_LARGEST_VALUE:.0e} "
+            "the features handle (they compute in single precision); rescale the image"
+        )
     shape = getattr(pitch, "shape", None)
     if shape is not None and image.shape != tuple(shape):
         raise ValueError(

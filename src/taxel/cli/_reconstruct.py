@@ -16,6 +16,7 @@ from taxel.cli._files import reading, writing
 __all__ = ["register"]
 
 _RULES = ("gcv", "lcurve", "discrepancy")
+LARGEST_PRESSURE = 1e12  # [Pa]
 
 
 def _rule_or_lambda(text: str) -> str | float:
@@ -60,6 +61,17 @@ def _load_frame(path: Path) -> np.ndarray:
     if not (np.issubdtype(frame.dtype, np.integer) or np.issubdtype(frame.dtype, np.floating)):
         raise ValueError(f"`FRAME` {str(path)!r} holds {frame.dtype} values, not real numbers")
     return frame
+
+
+def _check_range(path: Path, pressure: np.ndarray) -> None:
+    """Refuse readings beyond any contact pressure (the solvers' squares would overflow)."""
+    finite = pressure[np.isfinite(pressure)]  # NaN marks a dead taxel
+    largest = float(np.abs(finite).max()) if finite.size else 0.0
+    if largest > LARGEST_PRESSURE:
+        raise ValueError(
+            f"`FRAME` {str(path)!r} holds pressures up to {largest:.3g} Pa, beyond any contact "
+            f"(at most {LARGEST_PRESSURE:.0e} Pa, well past the strength of any material)"
+        )
 
 
 def _check_archive(path: Path) -> None:
@@ -111,6 +123,7 @@ def _run(arguments: argparse.Namespace) -> int:
             f"`FRAME` {str(path)!r} holds raw codes ({stored}); give the sensor's "
             "calibration with --calibration CAL.npz (made by `taxel calibrate`)"
         )
+    _check_range(path, frame)
     spec = forward_model_preset(arguments.sensor, oversampling=arguments.oversampling)
     result = reconstruct(
         frame,
@@ -126,10 +139,10 @@ def _run(arguments: argparse.Namespace) -> int:
         "method": result.method,
         "order": result.order,
         "rule": result.rule,
-        "regularization": _plain(result.regularization),
-        "residual_norm": _plain(result.residual_norm),
-        "solution_norm": _plain(result.solution_norm),
-        "normal_force": _plain(result.normal_force),
+        "regularization": _finite_or_none(result.regularization),
+        "residual_norm": _finite_or_none(result.residual_norm),
+        "solution_norm": _finite_or_none(result.solution_norm),
+        "normal_force": _finite_or_none(result.normal_force),
         "centroid_m": _finite_or_none(centre),
         "load_shape": list(spec.load_shape),
         "load_pitch": spec.load_pitch,
@@ -155,7 +168,7 @@ def _run(arguments: argparse.Namespace) -> int:
 
 
 def _finite_or_none(value):
-    """As `_plain`, with NaN (a centroid without force) as None: JSON has no NaN."""
+    """As `_plain`, with NaN or inf (a centroid without force) as None: JSON has neither."""
     plain = _plain(value)
     if isinstance(plain, float):
         return plain if np.isfinite(plain) else None
@@ -214,7 +227,10 @@ def register(commands: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("--noise-level", type=positive, default=None, help="reading noise std")
     parser.add_argument(
-        "--oversampling", type=integer_in(1), default=1, help="load cells per taxel (>= 1)"
+        "--oversampling",
+        type=integer_in(1, 8),  # taxel.reconstruction's ForwardModelSpec takes 1..8
+        default=1,
+        help="load cells per taxel along each axis (1-8)",
     )
     parser.add_argument("--out", required=True, metavar="PRESSURE.npy", help="output map")
     parser.add_argument(
