@@ -1,6 +1,7 @@
 """``taxel active``: the procedures from the command line."""
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -30,7 +31,7 @@ def test_locate_corner(capsys):
 @pytest.mark.parametrize(
     ("arguments", "message"),
     [
-        (["active", "probe-plane", "--probes", "2"], "argument --probes: must be >= 3, got 2"),
+        (["active", "probe-plane", "--probes", "2"], "--probes: must lie in 3..1000, got 2"),
         (["active", "probe-plane", "--sensor", "piezo8x8"], "piezo8x8"),
         (["active", "probe-plane", "--sensor", "nothing"], "--sensor: must be one of vhdta128"),
         (["active", "probe-plane", "--sensor", "microbend16"], "reads one signal per fibre"),
@@ -248,4 +249,28 @@ def test_stiffness_refuses_a_pad_calibration_made_at_other_forces(capsys, small_
     assert capsys.readouterr().err == (
         f"taxel active: error: --forces 10 30: the --calibration {pad} was made at 12 39 N; "
         "give those or another --calibration\n"
+    )
+
+
+@pytest.mark.parametrize(
+    ("arguments", "message"),
+    [
+        (["probe-plane", "--probes", "100000"], "argument --probes: must lie in 3..1000"),
+        (["locate-corner", "--probes-per-face", "5000"], "--probes-per-face: must lie in 3..300"),
+    ],
+)
+def test_probe_counts_have_an_upper_bound(capsys, arguments, message):
+    # 100000 presses would take over an hour at about 45 ms each, without a word
+    with pytest.raises(SystemExit) as stop:
+        main(["active", *arguments])
+    assert stop.value.code == 2
+    assert message in capsys.readouterr().err
+
+
+@pytest.mark.skipif(not Path("/proc/self").is_dir(), reason="needs Linux's /proc")
+def test_an_unwritable_table_is_found_before_the_build(capsys):
+    # /proc takes no new file: found at once, not after building the table
+    assert main(["active", "edge-radius", "--radius-mm", "2", "--table", "/proc/t.json"]) == 2
+    assert capsys.readouterr().err == (
+        "taxel active: error: --table /proc/t.json cannot be written (No such file or directory)\n"
     )

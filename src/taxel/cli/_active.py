@@ -285,7 +285,12 @@ def register(commands: argparse._SubParsersAction) -> None:
         _probe_plane,
     )
     plane.add_argument("--sensor", type=preset, default="resistive16", help="static sensor preset")
-    plane.add_argument("--probes", type=integer_in(3), default=5, help="number of presses (>= 3)")
+    plane.add_argument(
+        "--probes",
+        type=integer_in(3, 1000),  # about 45 ms a press: 1000 take most of a minute
+        default=5,
+        help="number of presses (5), 3-1000",
+    )
     plane.add_argument(
         "--force",
         type=positive,
@@ -313,9 +318,9 @@ def register(commands: argparse._SubParsersAction) -> None:
     )
     corner.add_argument(
         "--probes-per-face",
-        type=integer_in(3),  # taxel.active MIN_PROBES: three presses fix a plane
+        type=integer_in(3, 300),  # taxel.active MIN_PROBES: three presses fix a plane
         default=3,
-        help="presses on each face (>= 3)",
+        help="presses on each face (3), 3-300",
     )
     corner.add_argument(
         "--force",
