@@ -171,6 +171,25 @@ def test_constrained_solutions_are_never_negative(method, representation):
         assert result.method == method
 
 
+@pytest.mark.parametrize("method", ["tikhonov", "tsvd", "nonneg", "tv"])
+@pytest.mark.parametrize("rule", ["gcv", "lcurve", "discrepancy"])
+def test_a_frame_without_touch_gives_no_pressure_and_no_warning(method, rule):
+    # an all-zero frame has no residual at any lambda (its GCV is 0, its noise estimate 0);
+    # warnings are errors in the tests
+    result = reconstruct(np.zeros(SMALL.shape), SMALL, method=method, regularization=rule)
+    assert np.all(result.pressure == 0.0)
+
+
+def test_total_variation_is_the_same_at_any_pressure_scale():
+    # the shrinkage of a gradient of near-zero size divided by it: no overflow at 250 MPa
+    frame = forward_operator(SMALL).apply(_patch(SMALL.shape))
+    frame += np.random.default_rng(2).normal(0, 2e3, SMALL.shape)
+    small = reconstruct(frame, SMALL, method="tv", noise_level=2e3)
+    large = reconstruct(frame * 1e4, SMALL, method="tv", noise_level=2e7)
+    assert large.converged
+    assert np.allclose(large.pressure, small.pressure * 1e4, rtol=1e-9, atol=1e-9 * 40e7)
+
+
 def test_tv_recovers_a_punch_better_than_tikhonov():
     spec = forward_model_preset("resistive16")
     truth = np.zeros(spec.shape)

@@ -197,7 +197,9 @@ class ADMMSolver:
         z = np.empty_like(target)
         if self.method == "tv":
             magnitude = np.sqrt(target[0] ** 2 + target[1] ** 2)
-            shrink = np.maximum(1 - (self._weight / rho) / np.maximum(magnitude, 1e-300), 0)
+            # 1 - (weight / rho) / magnitude, at least 0, written so that it cannot overflow
+            excess = np.maximum(magnitude - self._weight / rho, 0.0)
+            shrink = np.divide(excess, magnitude, out=np.zeros_like(excess), where=magnitude > 0)
             z[:2] = target[:2] * shrink
         z[-1] = np.maximum(target[-1], 0.0)
         state.z = z
@@ -261,6 +263,7 @@ class ADMMSolver:
         """The mu with |A x_mu - b| = target, by secant steps on (log mu, log residual)."""
         history: list[tuple[float, float, ADMMState]] = []
         log_mu, state = np.log(initial_guess), None
+        target = max(target, 1e-300)  # no noise at all (an all-zero frame)
         for _ in range(10):
             state = self.run(frame, float(np.exp(log_mu)), initial=state, callback=callback)
             log_r = np.log(max(self._residual(frame, state.x), 1e-300))

@@ -312,7 +312,8 @@ class ParameterScan:
             values = np.log(np.maximum(curve.residual_norm, 1e-300))
             return 10 ** _crossings(self.log_grid, values, target)
         if rule == "gcv":
-            values = np.log(curve.gcv)
+            # an all-zero frame has no residual at any lambda: then the smallest on the grid
+            values = np.log(np.maximum(curve.gcv, 1e-300))
             logs = _parabola_vertices(self.log_grid, values, np.argmin(values, axis=1))
         elif rule == "lcurve":
             values = curve.curvature.copy()
