@@ -72,6 +72,7 @@ def test_public_names():
         "edge_cross_section",
         "estimate_contact_point",
         "evaluate_slip_detection",
+        "finger_force_limit",
         "fit_edge_radius_table",
         "fit_plane",
         "fit_texture_classifier",

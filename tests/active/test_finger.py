@@ -178,3 +178,20 @@ def test_a_press_at_exactly_the_finger_s_limit_is_not_refused_for_rounding():
         finger.move_to(make_pose(DOWN, [x, 0.0, 0.045]))
         assert finger.press(normal_force=finger.max_force).normal_force == pytest.approx(5.0)
         finger.retract()
+
+
+def test_the_force_limit_is_a_quarter_of_the_array_at_full_scale_as_written():
+    from taxel.active import finger_force_limit
+    from taxel.sensor import PRESET_NAMES
+
+    above_a_ball = make_pose(np.diag([1.0, -1.0, -1.0]), [0.0, 0.0, 0.05])
+    for name in PRESET_NAMES:
+        chosen = make_sensor(name)
+        quarter = chosen.full_scale * chosen.geometry.active_area / 4
+        assert finger_force_limit(name) == pytest.approx(quarter, rel=1e-12), name
+        finger = SimulatedFinger(chosen, [make_ball("ball", 1e-3)], above_a_ball)
+        assert finger.max_force == finger_force_limit(chosen), name
+    # 200 kPa x 1024 mm^2 / 4 is 51.199999999999996 in floating point; the limit is 51.2 N
+    assert finger_force_limit("resistive16") == 51.2
+    finger = SimulatedFinger("resistive16", [make_ball("ball", 6.25e-3)], above_a_ball)
+    assert finger.press(normal_force=51.2).normal_force == pytest.approx(51.2, rel=1e-9)

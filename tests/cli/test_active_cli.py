@@ -211,18 +211,13 @@ def test_bad_values_are_refused_before_any_press(capsys, arguments, message):
     assert error.count("\n") == 1 and message in error, error
 
 
-def test_the_finger_limit_is_the_simulated_finger_s():
-    import numpy as np
+def test_a_force_at_the_finger_s_limit_is_taken_and_one_above_is_refused():
+    from taxel.cli._active import _check_forces
+    from taxel.cli._main import CommandLineError
 
-    from taxel.active import SimulatedFinger, make_ball
-    from taxel.cli._active import finger_limit
-    from taxel.frames import make_pose
-    from taxel.sensor import PRESET_NAMES, make_sensor
-
-    above_a_ball = make_pose(np.diag([1.0, -1.0, -1.0]), [0.0, 0.0, 0.05])
-    for name in PRESET_NAMES:
-        finger = SimulatedFinger(make_sensor(name), [make_ball("ball", 1e-3)], above_a_ball)
-        assert finger_limit(name) == finger.max_force, name
+    _check_forces("--force", [51.2], "resistive16")  # the limit as it is written
+    with pytest.raises(CommandLineError, match="presses at most 51.2 N .* at most 51.2$"):
+        _check_forces("--force", [51.3], "resistive16")
 
 
 def test_edge_radius_presses_at_the_given_forces(capsys, small_files, tmp_path):

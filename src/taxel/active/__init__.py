@@ -3,7 +3,7 @@
 Robot side: scene, probe interface, simulated finger
 ----------------------------------------------------
 SceneObject, ProfileObject, Box, make_ball, Probe, ProbeReading, SimulatedFinger,
-ProcedureStep, step_from_reading
+finger_force_limit, ProcedureStep, step_from_reading
 
 Surface normal, planarity, edges and corners by probing
 -------------------------------------------------------
@@ -73,7 +73,7 @@ from taxel.active._edge_radius import (
 )
 from taxel.active._edge_section import SECTION_DESCRIPTORS, EdgeCrossSection, edge_cross_section
 from taxel.active._edge_table import EdgeRadiusTable, fit_edge_radius_table
-from taxel.active._finger import SimulatedFinger
+from taxel.active._finger import SimulatedFinger, finger_force_limit
 from taxel.active._load_normalization import load_shares, remove_load_coherent
 from taxel.active._model_library import ModelLibrary
 from taxel.active._object_library import MODEL_NAMES, describe_models, make_model
@@ -213,6 +213,7 @@ __all__ = [
     "edge_cross_section",
     "estimate_contact_point",
     "evaluate_slip_detection",
+    "finger_force_limit",
     "fit_edge_radius_table",
     "fit_plane",
     "fit_texture_classifier",

@@ -15,12 +15,28 @@ from taxel.frames import as_pose, transform_directions, transform_points
 from taxel.mechanics import ContactResult, solve_contact
 from taxel.sensor import TactileSensor, as_sensor
 
-__all__ = ["SimulatedFinger"]
+__all__ = ["SimulatedFinger", "finger_force_limit"]
 
 # The contact and support models are linear elastic, for small strains: a press that would
 # compress an object by more than half its height is refused, not extrapolated (the seed's
 # racquet ball, the softest object it pressed, lost 18 % of its height at 39 N).
 _LARGEST_COMPRESSION = 0.5
+
+
+def finger_force_limit(sensor: TactileSensor | str) -> float:
+    """The largest force a simulated finger carrying `sensor` presses with, by default [N].
+
+    The sensor's full-scale pressure over a quarter of its active area: a contact that
+    covers a quarter of the array at full scale. Rounded to 12 significant digits, so that
+    the limit reads as it is written (51.2 N for resistive16, not 51.199999999999996).
+
+    Examples
+    --------
+    >>> finger_force_limit("resistive16")
+    51.2
+    """
+    chosen = as_sensor(sensor)
+    return float(f"{chosen.full_scale * chosen.geometry.active_area / 4:.12g}")
 
 
 class SimulatedFinger:
@@ -35,8 +51,8 @@ class SimulatedFinger:
     pose : array_like, shape (4, 4)
         Initial approach pose T_BS of the sensor (not touching anything).
     max_force : float, optional
-        The largest force the finger may press with [N]; default: the sensor's full-scale
-        pressure over a quarter of its active area.
+        The largest force the finger may press with [N]; default: `finger_force_limit`,
+        the sensor's full-scale pressure over a quarter of its active area.
     reach : float, default 0.05
         How far along its normal the finger may travel looking for contact [m].
     rng : numpy.random.Generator or int, optional
@@ -78,7 +94,7 @@ class SimulatedFinger:
             if not isinstance(item, SceneObject):
                 raise TypeError(f"`scene` must hold SceneObject items, got {item!r}")
         if max_force is None:
-            max_force = sensor.full_scale * sensor.geometry.active_area / 4
+            max_force = finger_force_limit(sensor)
         self.max_force = check_positive("max_force", max_force)
         self.reach = check_positive("reach", reach)
         self._rng = as_rng("rng", rng)

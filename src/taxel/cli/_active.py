@@ -45,15 +45,10 @@ def _emit(arguments: argparse.Namespace, payload: dict[str, Any], lines: list[st
 
 
 def finger_limit(sensor: str) -> float:
-    """The largest force [N] the simulated finger carrying the preset `sensor` presses with.
+    """The largest force [N] the simulated finger carrying the preset `sensor` presses with."""
+    from taxel.active import finger_force_limit
 
-    `taxel.active.SimulatedFinger`'s default: the sensor's full-scale pressure over a
-    quarter of its active area (a test checks that the two agree).
-    """
-    from taxel.sensor import make_sensor
-
-    chosen = make_sensor(sensor)
-    return float(chosen.full_scale * chosen.geometry.active_area / 4)
+    return finger_force_limit(sensor)
 
 
 def _check_forces(flag: str, forces: Sequence[float], sensor: str) -> None:
