@@ -170,3 +170,15 @@ def test_real_fabrics_across_speeds():
     )
     tests = [f"{fabric}_F150_V-50mmps_0.csv" for fabric in fabrics]
     assert model.predict([features(name) for name in tests]).tolist() == fabrics
+
+
+def test_a_file_nested_too_deeply_for_the_json_parser_is_a_value_error(tmp_path):
+    from taxel.active import EdgeRadiusTable, ModelLibrary
+
+    deep = tmp_path / "deep.json"
+    deep.write_text("[" * 100_000 + "]" * 100_000)  # beyond the parser's recursion limit
+    with pytest.raises(ValueError, match="nested too deeply to be a texture classifier"):
+        TextureClassifier.load(deep)
+    for kind in (EdgeRadiusTable, ModelLibrary):
+        with pytest.raises(ValueError, match=r"`path` .*deep.json' is nested too deeply to be"):
+            kind.load(deep)

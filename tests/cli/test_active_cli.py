@@ -155,7 +155,7 @@ def test_a_wrong_or_deeply_nested_file_names_its_flag(capsys, tmp_path, procedur
     assert capsys.readouterr().err == f"taxel active: error: {flag} {str(other)!r} is not {what}\n"
     assert main(["active", *procedure, flag, str(deep)]) == 2
     assert capsys.readouterr().err == (
-        f"taxel active: error: {flag} {deep}: nested too deeply to be a file taxel wrote\n"
+        f"taxel active: error: {flag} {str(deep)!r} is nested too deeply to be {what}\n"
     )
 
 

@@ -233,5 +233,5 @@ def test_a_deeply_nested_model_is_refused(folders, tmp_path, capsys):
     recording = str(next(test.iterdir()))
     assert main(["texture", "classify", recording, "--model", str(deep)]) == 2
     assert _one_line_error(capsys) == (
-        f"taxel texture: error: --model {deep}: nested too deeply to be a file taxel wrote\n"
+        f"taxel texture: error: --model {deep}: nested too deeply to be a texture classifier\n"
     )

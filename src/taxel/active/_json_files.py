@@ -40,6 +40,8 @@ def read_json(
         data = json.loads(source.read_text())
     except (json.JSONDecodeError, UnicodeDecodeError) as error:
         raise ValueError(f"`path` {str(source)!r} is not a JSON file: {error}") from None
+    except RecursionError:
+        raise ValueError(f"`path` {str(source)!r} is nested too deeply to be {what}") from None
     if not isinstance(data, dict) or data.get("format") != file_format:
         raise ValueError(f"`path` {str(source)!r} is not {what}")
     missing = [key for key in required if key not in data]

@@ -207,6 +207,8 @@ class TextureClassifier:
             data = json.loads(path.read_text())
         except (json.JSONDecodeError, UnicodeDecodeError) as error:
             raise ValueError(f"{path}: not a JSON file ({error})") from None
+        except RecursionError:
+            raise ValueError(f"{path}: nested too deeply to be a texture classifier") from None
         try:
             return cls.from_dict(data)
         except (TypeError, ValueError) as error:

@@ -49,15 +49,10 @@ def reading(flag: str, path: str | os.PathLike[str]) -> Iterator[None]:
     """Errors loading `path` (a --table, --model, ... file) as one line naming `flag`.
 
     The loaders' messages name their parameter, `` `path` ``, or begin with the file's
-    name; here the flag is named. A JSON file nested too deeply for the parser (a
-    RecursionError) is refused.
+    name; here the flag is named.
     """
     try:
         yield
-    except RecursionError:
-        raise CommandLineError(
-            f"{flag} {path}: nested too deeply to be a file taxel wrote"
-        ) from None
     except ValueError as error:
         message = str(error)
         if message.startswith("`path` "):
