@@ -148,6 +148,18 @@ def test_features_layout_and_nan_above_nyquist():
             ValueError,
             r"`segment_length` must be at most the record's travel \(0.2286 m: 160 steps",
         ),
+        # a segment beyond float's range of samples, and one of fewer than 8 samples
+        # (at 35 Hz and 50 mm/s a sample is 1.43 mm of travel)
+        (
+            {"segment_length": 1e308},
+            ValueError,
+            r"`segment_length` must be at most the record's travel .* got 1e\+308",
+        ),
+        (
+            {"segment_length": 0.01},
+            ValueError,
+            r"`segment_length` must span at least 8 samples \(0.01143 m at 0.05 m/s and 35 Hz\)",
+        ),
         ({"readings": np.full(200, np.nan)}, ValueError, "`readings` must be finite"),
         ({"readings": np.ones(12), "time": np.arange(12.0)}, ValueError, "at least 16 steps"),
     ],

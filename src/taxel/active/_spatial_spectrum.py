@@ -7,6 +7,7 @@ surface taken at different speeds coincide.
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -18,6 +19,7 @@ from taxel._validation import as_finite_array, check_finite, check_positive
 __all__ = ["band_power", "spatial_power_spectrum"]
 
 MIN_STEPS = 16
+_MIN_SEGMENT = 8  # samples in a Welch segment, at least
 
 
 def band_weights(spatial_frequency: np.ndarray, edges: np.ndarray) -> np.ndarray:
@@ -77,9 +79,9 @@ def spatial_power_spectrum(
     .. math:: k = f / |v|, \qquad S_x(k) = |v| \, S_t(k |v|),
 
     which keeps the variance: the integral of S_x over k equals that of S_t over f. A
-    segment spans `segment_length` of travel, round(segment_length fs / |v|) samples
-    (at least 8); a segment longer than the record is an error, since the record cannot
-    give that resolution.
+    segment spans `segment_length` of travel, round(segment_length fs / |v|) samples; a
+    segment longer than the record is an error, since the record cannot give that
+    resolution, and so is one shorter than 8 samples, too few for a spectrum.
 
     Examples
     --------
@@ -100,14 +102,20 @@ def spatial_power_spectrum(
     n_steps = readings.shape[0]
     if n_steps < MIN_STEPS:
         raise ValueError(f"`readings` must have at least {MIN_STEPS} steps, got {n_steps}")
-    samples = round(segment_length * sampling_rate / speed)
-    if samples > n_steps:
+    samples_per_segment = segment_length * sampling_rate / speed
+    if not math.isfinite(samples_per_segment) or round(samples_per_segment) > n_steps:
         travel = n_steps * speed / sampling_rate
         raise ValueError(
             f"`segment_length` must be at most the record's travel ({travel:.4g} m: "
             f"{n_steps} steps at {speed:g} m/s and {sampling_rate:g} Hz), got {segment_length:g}"
         )
-    samples = max(samples, 8)
+    samples = round(samples_per_segment)
+    if samples < _MIN_SEGMENT:
+        shortest = _MIN_SEGMENT * speed / sampling_rate
+        raise ValueError(
+            f"`segment_length` must span at least {_MIN_SEGMENT} samples ({shortest:.4g} m at "
+            f"{speed:g} m/s and {sampling_rate:g} Hz), got {segment_length:g}"
+        )
     frequency, psd = _welch(readings, sampling_rate, samples)
     return frequency / speed, psd * speed
 
