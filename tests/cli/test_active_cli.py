@@ -189,7 +189,7 @@ def test_a_wrong_or_deeply_nested_file_names_its_flag(capsys, tmp_path, procedur
         ),
         (
             ["locate-corner", "--force", "60"],
-            "--force 60: the finger with resistive16 presses at most 51.19 N",  # 51.1999..96
+            "--force 60: the finger with resistive16 presses at most 51.2 N",
         ),
         (
             ["edge-radius", "--radius-mm", "2", "--sensor", "capacitive4x4"],
@@ -218,6 +218,11 @@ def test_a_force_at_the_finger_s_limit_is_taken_and_one_above_is_refused():
     _check_forces("--force", [51.2], "resistive16")  # the limit as it is written
     with pytest.raises(CommandLineError, match="presses at most 51.2 N .* at most 51.2$"):
         _check_forces("--force", [51.3], "resistive16")
+    # shown to four digits, rounded down: 0.576 N as it is, 112.625855595 N as 112.6 N
+    with pytest.raises(CommandLineError, match="presses at most 0.576 N .* at most 0.576$"):
+        _check_forces("--forces", [0.1, 0.6], "reflective8x8")
+    with pytest.raises(CommandLineError, match="presses at most 112.6 N .* at most 112.6$"):
+        _check_forces("--force", [113.0], "vhdta128")
 
 
 def test_edge_radius_presses_at_the_given_forces(capsys, small_files, tmp_path):

@@ -56,9 +56,11 @@ def _check_forces(flag: str, forces: Sequence[float], sensor: str) -> None:
     limit = finger_limit(sensor)
     if max(forces) > limit:
         given = " ".join(f"{force:g}" for force in forces)
-        step = 10.0 ** (math.floor(math.log10(limit)) - 3)  # four significant digits
-        largest = math.floor(limit / step) * step
-        shown = f"{largest if largest <= limit else largest - step:.4g}"  # a force it takes
+        # the limit to four significant digits, rounded down so that it is a force it takes
+        largest = float(f"{limit:.4g}")
+        if largest > limit:
+            largest -= 10.0 ** (math.floor(math.log10(limit)) - 3)
+        shown = f"{largest:.4g}"
         raise CommandLineError(
             f"{flag} {given}: the finger with {sensor} presses at most {shown} N (its "
             f"full-scale pressure over a quarter of its area); give {flag} of at most {shown}"
