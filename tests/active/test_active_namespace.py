@@ -26,6 +26,7 @@ def test_public_names():
         "MODEL_NAMES",
         "ModelLibrary",
         "NORMALIZATIONS",
+        "NoContactError",
         "PadCalibration",
         "PlaneEstimate",
         "PlaneProbing",

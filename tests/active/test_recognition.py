@@ -119,3 +119,10 @@ def test_bad_commands_leave_the_finger_at_its_start(library):
     )  # fmt: skip
     with pytest.raises(ValueError, match="was made on sensor 'other'"):
         Recognition(other).run(finger)
+    # a touch the finger refuses (a force beyond its limit) is an error, not "no contact"
+    weak = SimulatedFinger(sensor, [make_model("washer")], start, max_force=10.0)
+    with pytest.raises(ValueError, match="`normal_force` must be <= the finger's limit 10 N"):
+        Recognition(library).run(weak)
+    assert np.array_equal(weak.pose, start)
+    with pytest.raises(ValueError, match="the finger's limit 12.8 N, got 15"):
+        build_model_library(["washer", "pen"], sensor="photoelastic64")

@@ -110,6 +110,21 @@ def test_recognize_ranks_the_candidates(capsys, small_files):
     assert "recognized as: washer" in capsys.readouterr().out
 
 
+def test_recognize_presses_within_the_finger_s_limit(capsys, small_files):
+    library = str(small_files / "l.json")  # made at the default 15 N
+    # photoelastic64's finger presses at most 12.8 N: refused before a library is built
+    assert main(["active", "recognize", "--object", "washer", "--sensor", "photoelastic64"]) == 2
+    assert capsys.readouterr().err == (
+        "taxel active: error: --force 15: the finger with photoelastic64 presses at most 12.8 N"
+        " (its full-scale pressure over a quarter of its area); give --force of at most 12.8\n"
+    )
+    assert main(["active", "recognize", "--object", "coin", "--library", library, "--force", "10"])
+    assert capsys.readouterr().err == (
+        f"taxel active: error: --force 10: the --library {library} was made with 15 N; give "
+        "that or another --library\n"
+    )
+
+
 def test_stiffness_of_a_custom_ball_and_bad_files(capsys, small_files, tmp_path):
     pad = str(small_files / "pad.json")
     assert (

@@ -2,8 +2,8 @@
 
 Robot side: scene, probe interface, simulated finger
 ----------------------------------------------------
-SceneObject, ProfileObject, Box, make_ball, Probe, ProbeReading, SimulatedFinger,
-finger_force_limit, ProcedureStep, step_from_reading
+SceneObject, ProfileObject, Box, make_ball, Probe, ProbeReading, NoContactError,
+SimulatedFinger, finger_force_limit, ProcedureStep, step_from_reading
 
 Surface normal, planarity, edges and corners by probing
 -------------------------------------------------------
@@ -78,7 +78,7 @@ from taxel.active._load_normalization import load_shares, remove_load_coherent
 from taxel.active._model_library import ModelLibrary
 from taxel.active._object_library import MODEL_NAMES, describe_models, make_model
 from taxel.active._pad_calibration import PadCalibration, calibrate_pad, core_area
-from taxel.active._probe import Probe, ProbeReading
+from taxel.active._probe import NoContactError, Probe, ProbeReading
 from taxel.active._probe_corner import (
     CornerEstimate,
     CornerProbing,
@@ -171,6 +171,7 @@ __all__ = [
     "EdgeRadiusTable",
     "Grating",
     "ModelLibrary",
+    "NoContactError",
     "PadCalibration",
     "PlaneEstimate",
     "PlaneProbing",

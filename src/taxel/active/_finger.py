@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from taxel._validation import as_finite_array, as_rng, check_positive
-from taxel.active._probe import ProbeReading
+from taxel.active._probe import NoContactError, ProbeReading
 from taxel.active._scene import SceneObject
 from taxel.frames import as_pose, transform_directions, transform_points
 from taxel.mechanics import ContactResult, solve_contact
@@ -145,7 +145,7 @@ class SimulatedFinger:
         distances = np.min(per_object, axis=0)
         if not np.isfinite(distances).any() or np.nanmin(distances) > self.reach:
             spacing = max(self._sensor.load_grid.spacing)
-            raise ValueError(
+            raise NoContactError(
                 f"no object within the finger's reach ({self.reach * 1e3:g} mm) along the "
                 f"sensor normal at any point of its load grid ({spacing * 1e3:.3g} mm apart; "
                 "a thinner object can fall between them); the finger did not move"

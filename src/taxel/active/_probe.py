@@ -18,7 +18,15 @@ import numpy as np
 
 from taxel.sensor import SensorFrame, TactileSensor
 
-__all__ = ["Probe", "ProbeReading"]
+__all__ = ["NoContactError", "Probe", "ProbeReading"]
+
+
+class NoContactError(ValueError):
+    """Raised by `Probe.press` when no object lies within the probe's reach.
+
+    Procedures that explore (`Recognition`) count such a press as a touch without contact;
+    any other error of a press (a force beyond the probe's limit) is a real error.
+    """
 
 
 @dataclass(frozen=True)
@@ -74,7 +82,8 @@ class Probe(Protocol):
         """Press along the sensor normal and return the reading.
 
         To a force [N] (force control) or to a depth past first touch [m] (position
-        control). The finger stays pressed until `retract`.
+        control). The finger stays pressed until `retract`. Raises `NoContactError` when
+        no object lies within reach.
         """
         ...
 

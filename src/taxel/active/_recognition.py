@@ -21,7 +21,7 @@ import numpy as np
 
 from taxel._validation import check_instance, check_positive
 from taxel.active._model_library import ModelLibrary
-from taxel.active._probe import Probe
+from taxel.active._probe import NoContactError, Probe
 from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._touch_features import TOUCH_FEATURES, touch_vector
 from taxel.features import extract, prepare
@@ -63,9 +63,10 @@ def explore(
 ) -> tuple[list[np.ndarray], list[ProcedureStep]]:
     """Touch where the probe is, then `step` [m] either way along the imprint's long axis.
 
-    A touch that finds nothing within the probe's reach (the probe refuses to press)
-    counts as a touch without contact. The probe is retracted after each touch and
-    returned to its starting pose at the end, also when a command fails.
+    A touch that finds nothing within the probe's reach (the probe raises
+    `NoContactError`) counts as a touch without contact; any other error is raised. The
+    probe is retracted after each touch and returned to its starting pose at the end, also
+    when a command fails.
     """
     start = probe.pose
     sensor = probe.sensor
@@ -81,7 +82,7 @@ def explore(
                 steps.append(ProcedureStep("move", position=pose[:3, 3].copy()))
             try:
                 reading = probe.press(normal_force=normal_force)
-            except ValueError as error:  # nothing to press within reach
+            except NoContactError as error:
                 vectors.append(touch_vector(None))
                 steps.append(
                     ProcedureStep(f"touch {index + 1}: no contact ({error})", position=pose[:3, 3])

@@ -32,6 +32,7 @@ from taxel.cli._main import CommandLineError
 __all__ = ["finger_limit", "register"]
 
 _EDGE_FORCES = (12.0, 39.0)  # taxel.active's DEFAULT_FORCES: the seed's light and firm presses
+_TOUCH_FORCE = 15.0  # taxel.active's DEFAULT_TOUCH_FORCE, of recognition's touches
 _TOUCH = 0.5  # measure_deformation's touch_force [N], the first press of a pad calibration
 
 
@@ -237,18 +238,30 @@ def _stiffness(arguments: argparse.Namespace) -> int:
 def _recognize(arguments: argparse.Namespace) -> int:
     from taxel.active import ModelLibrary, build_model_library, recognize_object
 
+    force = _TOUCH_FORCE if arguments.force is None else arguments.force
+    _check_forces("--force", [force], arguments.sensor)
     library = _file_or_build(
         arguments.library,
         ModelLibrary.load,
-        lambda path: build_model_library(sensor=arguments.sensor, path=path),
+        lambda path: build_model_library(sensor=arguments.sensor, normal_force=force, path=path),
         "model library",
         "--library",
     )
+    if library is not None:
+        if arguments.force is not None and library.normal_force != force:
+            raise CommandLineError(
+                f"--force {force:g}: the --library {arguments.library} was made with "
+                f"{library.normal_force:g} N; give that or another --library"
+            )
+        force = library.normal_force
+    elif arguments.force is not None:  # the default library is made at the default force
+        library = build_model_library(sensor=arguments.sensor, normal_force=force)
     result = recognize_object(
         arguments.object, library=library, sensor=arguments.sensor, rng=arguments.seed
     )
     lines = [
-        f"touched a {arguments.object} {result.n_touches} time(s) on {arguments.sensor}",
+        f"touched a {arguments.object} {result.n_touches} time(s) at {force:g} N on "
+        f"{arguments.sensor}",
         "ranked candidates:",
     ]
     lines += [f"  {name:12} score {score:.3f}" for name, score, _ in result.candidates]
@@ -413,6 +426,12 @@ def register(commands: argparse._SubParsersAction) -> None:
         help=f"the model to touch ({', '.join(MODEL_NAMES)})",
     )
     recognize.add_argument("--sensor", type=preset, default="vhdta128", help="sensor preset")
+    recognize.add_argument(
+        "--force",
+        type=positive,
+        help="force of each touch [N] (15, or the --library's), at most the finger's limit "
+        "(see probe-plane); a library is built at this force",
+    )
     recognize.add_argument(
         "--library",
         metavar="LIBRARY.json",
