@@ -196,3 +196,13 @@ def test_a_procedure_is_given_its_calibration_a_probe_and_a_table_height(calibra
 def test_a_pad_calibration_needs_the_three_presses_and_small_references(changes, match):
     with pytest.raises(ValueError, match=match):
         calibrate_pad("resistive16", **changes)
+
+
+def test_reference_balls_between_the_load_grid_s_points_are_left_out_or_refused():
+    # capacitive4x4's load grid: 4 x 4 points 5 mm apart, the nearest 3.54 mm from the
+    # centre, where the balls are pressed: the 2 mm ball touches none of them
+    with pytest.raises(ValueError, match=r"`radii` must be > 3.54 mm for capacitive4x4, got 2 mm"):
+        calibrate_pad("capacitive4x4", forces=(0.5, 2.0, 4.0), radii=(2e-3, 8e-3))
+    calibration = calibrate_pad("capacitive4x4", forces=(0.5, 2.0, 4.0), rng=None)
+    assert calibration.areas.shape == (3, 5 + 2)  # balls of 4-64 mm and the two cubes
+    assert np.all(calibration.compressions > 0)

@@ -186,11 +186,17 @@ def _references(radii: Sequence[float]) -> list[ProfileObject]:
     return references
 
 
+def _nearest_grid_point(sensor: TactileSensor) -> float:
+    """Distance of the load grid's point nearest the sensor's centre from it [m]."""
+    (rows, cols), (dy, dx) = sensor.load_grid.shape, sensor.load_grid.spacing
+    return math.hypot(dy / 2 if rows % 2 == 0 else 0.0, dx / 2 if cols % 2 == 0 else 0.0)
+
+
 def calibrate_pad(
     sensor: str | TactileSensor = "vhdta128",
     *,
     forces: Sequence[float] = (0.5, 12.0, 39.0),
-    radii: Sequence[float] = REFERENCE_RADII,
+    radii: Sequence[float] | None = None,
     rng: Any = 0,
 ) -> PadCalibration:
     """Calibrate the pad's compression in simulation on rigid balls and a rigid cube.
@@ -202,9 +208,12 @@ def calibrate_pad(
     forces : sequence of float, default (0.5, 12, 39)
         The forces the deformation procedure will press with [N]: at least three distinct
         ones (its touch, light and firm press).
-    radii : sequence of float, default `REFERENCE_RADII`
+    radii : sequence of float, optional
         Radii of the rigid reference balls [m], at least two distinct ones (the small
-        imprints); rigid cubes of 20 and 28 mm are added.
+        imprints); rigid cubes of 20 and 28 mm are added. By default those of
+        `REFERENCE_RADII` that the sensor's load grid sees: a ball is pressed at the
+        sensor's centre, and one that does not reach the nearest point of the grid falls
+        between its points (capacitive4x4's, 5 mm apart, miss the 2 mm ball).
     rng : numpy.random.Generator or int, optional
         Noise of the frames (default seed 0; None: noise-free).
 
@@ -223,11 +232,19 @@ def calibrate_pad(
         raise ValueError(
             f"`forces` must hold at least 3 distinct forces (touch, light, firm), got {forces}"
         )
+    generator = as_rng("rng", rng)
+    chosen = imaging_sensor(sensor)
+    nearest = _nearest_grid_point(chosen)
+    if radii is None:
+        radii = [radius for radius in REFERENCE_RADII if radius > nearest]
     radii = sorted({check_positive("radii", radius) for radius in _sequence("radii", radii)})
     if len(radii) < 2:
         raise ValueError(f"`radii` must hold at least 2 distinct radii, got {radii}")
-    generator = as_rng("rng", rng)
-    chosen = imaging_sensor(sensor)
+    if radii[0] <= nearest:
+        raise ValueError(
+            f"`radii` must be > {nearest * 1e3:.3g} mm for {chosen.name}, got "
+            f"{radii[0] * 1e3:g} mm: a smaller ball falls between the load grid's points"
+        )
     references = _references(radii)
     areas = np.zeros((len(forces), len(references)))
     compressions = np.zeros_like(areas)
