@@ -100,3 +100,16 @@ def test_rng_accepts_none_a_seed_or_a_generator():
     for bad in ["x", 1.5, True]:
         with pytest.raises(TypeError, match="`rng` must be None, a numpy.random.Generator or"):
             as_rng("rng", bad)
+
+
+def test_grid_shapes_and_broadcasting_pairs():
+    from taxel._validation import check_broadcast, check_grid_shape
+
+    assert check_grid_shape("shape", (4, np.int64(3))) == (4, 3)
+    with pytest.raises(ValueError, match=r"`shape` must be a \(rows, cols\) pair, got \(4,\)"):
+        check_grid_shape("shape", (4,))
+    with pytest.raises(ValueError, match="`shape` must be a whole number, got 2.5"):
+        check_grid_shape("shape", (2.5, 3))
+    check_broadcast(("x", "y"), np.zeros((1, 3)), np.zeros((4, 1)))
+    with pytest.raises(ValueError, match=r"`x` and `y` .* together, got \(3,\) and \(4,\)"):
+        check_broadcast(("x", "y"), np.zeros(3), np.zeros(4))

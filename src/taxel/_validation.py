@@ -124,12 +124,18 @@ def check_shape(name: str, array: np.ndarray, shape: tuple[int, ...]) -> None:
         raise ValueError(f"`{name}` must have shape {tuple(shape)}, got {tuple(array.shape)}")
 
 
-def check_pair(name: str, value: Any) -> tuple[float, float]:
-    """Return `value` as a pair of finite floats, or raise naming `name`."""
+def _two(name: str, value: Any, what: str) -> tuple[Any, Any]:
+    """The two items of `value`, or raise saying `name` must be `what`."""
     try:
         first, second = value
     except (TypeError, ValueError):
-        raise ValueError(f"`{name}` must be an (x, y) pair, got {_short(value)}") from None
+        raise ValueError(f"`{name}` must be {what}, got {_short(value)}") from None
+    return first, second
+
+
+def check_pair(name: str, value: Any) -> tuple[float, float]:
+    """Return `value` as a pair of finite floats, or raise naming `name`."""
+    first, second = _two(name, value, "an (x, y) pair")
     return check_finite(name, first), check_finite(name, second)
 
 
@@ -147,6 +153,23 @@ def check_count(name: str, value: Any, *, minimum: int = 1) -> int:
     if count < minimum:
         raise ValueError(f"`{name}` must be >= {minimum}, got {count}")
     return count
+
+
+def check_grid_shape(name: str, value: Any) -> tuple[int, int]:
+    """Return (rows, cols) from a pair of whole numbers >= 1, or raise naming `name`."""
+    rows, cols = _two(name, value, "a (rows, cols) pair")
+    return check_count(name, rows), check_count(name, cols)
+
+
+def check_broadcast(names: tuple[str, str], first: np.ndarray, second: np.ndarray) -> None:
+    """Raise naming both arrays when their shapes do not broadcast together."""
+    try:
+        np.broadcast_shapes(first.shape, second.shape)
+    except ValueError:
+        raise ValueError(
+            f"`{names[0]}` and `{names[1]}` must have shapes that broadcast together, got "
+            f"{first.shape} and {second.shape}"
+        ) from None
 
 
 def check_flag(name: str, value: Any) -> bool:

@@ -453,7 +453,7 @@ def test_sensor_coordinates_checks_its_input():
         sensor_coordinates(1, 2, (-4, -4), 1e-3)
     with pytest.raises(ValueError, match="`rows` must be finite"):
         sensor_coordinates(np.nan, 2, (4, 4), 1e-3)
-    with pytest.raises(ValueError, match=r"`rows` and `cols` must broadcast .* \(3,\) and \(2,\)"):
+    with pytest.raises(ValueError, match=r"`rows` and `cols` must have shapes that broadcast"):
         sensor_coordinates([1, 2, 3], [1, 2], (4, 4), 1e-3)
 
 

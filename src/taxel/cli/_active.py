@@ -282,6 +282,17 @@ def _add(
     return parser
 
 
+def _add_press_force(parser: argparse.ArgumentParser) -> None:
+    """The --force of the probing procedures (5 N, within the finger's limit)."""
+    parser.add_argument(
+        "--force",
+        type=positive,
+        default=5.0,
+        help="press force [N] (5), at most the finger's limit: the sensor's full-scale "
+        "pressure over a quarter of its area (reflective8x8: 0.576 N)",
+    )
+
+
 def register(commands: argparse._SubParsersAction) -> None:
     """Add ``taxel active`` and its procedures to the command line."""
     parser = commands.add_parser("active", help="active touch with a simulated finger")
@@ -301,13 +312,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         default=5,
         help="number of presses (5), 3-1000",
     )
-    plane.add_argument(
-        "--force",
-        type=positive,
-        default=5.0,
-        help="press force [N] (5), at most the finger's limit: the sensor's full-scale "
-        "pressure over a quarter of its area (reflective8x8: 0.576 N)",
-    )
+    _add_press_force(plane)
     plane.add_argument(
         "--face-tilt-deg",
         type=real_in(0.0, 45.0),
@@ -332,13 +337,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         default=3,
         help="presses on each face (3), 3-300",
     )
-    corner.add_argument(
-        "--force",
-        type=positive,
-        default=5.0,
-        help="press force [N] (5), at most the finger's limit: the sensor's full-scale "
-        "pressure over a quarter of its area (reflective8x8: 0.576 N)",
-    )
+    _add_press_force(corner)
     corner.add_argument(
         "--guess-error-mm",
         type=positive_in(0.0, 1000.0),

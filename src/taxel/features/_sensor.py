@@ -13,7 +13,12 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_count, check_positive
+from taxel._validation import (
+    as_finite_array,
+    check_broadcast,
+    check_grid_shape,
+    check_positive,
+)
 
 __all__ = [
     "check_image_shape",
@@ -153,18 +158,9 @@ def sensor_coordinates(
     (0.0015, -0.0015)
     """
     row_pitch, col_pitch = pitch_pair(sensor_or_pitch)
-    try:
-        n_rows, n_cols = shape
-    except (TypeError, ValueError):
-        raise ValueError(f"`shape` must be a (rows, cols) pair, got {shape!r}") from None
-    n_rows, n_cols = check_count("shape", n_rows), check_count("shape", n_cols)
+    n_rows, n_cols = check_grid_shape("shape", shape)
     rows, cols = as_finite_array("rows", rows), as_finite_array("cols", cols)
-    try:
-        np.broadcast_shapes(rows.shape, cols.shape)
-    except ValueError:
-        raise ValueError(
-            f"`rows` and `cols` must broadcast together, got shapes {rows.shape} and {cols.shape}"
-        ) from None
+    check_broadcast(("rows", "cols"), rows, cols)
     return (cols - (n_cols - 1) / 2) * col_pitch, (rows - (n_rows - 1) / 2) * row_pitch
 
 

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_finite, check_pair
+from taxel._validation import as_finite_array, check_broadcast, check_finite, check_pair
 from taxel.mechanics._operators import as_shape, as_spacing
 
 __all__ = ["Indenter", "grid_coordinates"]
@@ -67,12 +67,7 @@ class Indenter(ABC):
         """
         x = as_finite_array("x", x)
         y = as_finite_array("y", y)
-        try:
-            np.broadcast_shapes(x.shape, y.shape)
-        except ValueError:
-            raise ValueError(
-                f"`x` and `y` must have matching shapes, got {x.shape} and {y.shape}"
-            ) from None
+        check_broadcast(("x", "y"), x, y)
         x0, y0 = check_pair("position", position)
         angle = check_finite("angle", angle)
         cosine, sine = np.cos(angle), np.sin(angle)

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from scipy import fft
 
-from taxel._validation import as_finite_array, check_count, check_positive
+from taxel._validation import as_finite_array, check_grid_shape, check_positive
 from taxel.mechanics._kernels import depth_kernel, displacement_kernel, offsets
 from taxel.mechanics._materials import ElasticMaterial
 from taxel.mechanics._transfer import (
@@ -56,11 +56,7 @@ def as_spacing(spacing: Any) -> tuple[float, float]:
 
 def as_shape(shape: Any) -> tuple[int, int]:
     """Return (rows, cols) from a pair of whole numbers >= 1, or raise naming `shape`."""
-    try:
-        rows, cols = shape
-    except (TypeError, ValueError):
-        raise ValueError(f"`shape` must be a (rows, cols) pair, got {shape!r}") from None
-    return check_count("shape", rows), check_count("shape", cols)
+    return check_grid_shape("shape", shape)
 
 
 class ConvolutionOperator:
