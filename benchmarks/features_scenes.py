@@ -29,7 +29,7 @@ from taxel.frames import make_pose, transform_points
 from taxel.mechanics import INDENTER_NAMES, make_indenter
 from taxel.sensor import TactileSensor, make_sensor
 
-VERSION = 2  # bump when the scenes or labels change: old cache files are then ignored
+VERSION = 3  # bump when the scenes, labels or solver change: old cache files are then ignored
 CACHE = Path(__file__).resolve().parent / ".cache"
 POINT_SIZE = 2.5e-3  # [m], the default `point_size` of taxel.features.extract
 NOISE_LEVELS = (0.0, 0.05)  # added noise, fraction of the sensor's full scale
