@@ -32,3 +32,46 @@ def test_importing_taxel_does_not_import_matplotlib():
 def test_blank_image_draws():
     figure = plot_features(np.zeros((16, 16)), extract(np.zeros((16, 16)), 1e-3), 1e-3)
     assert figure.axes[0].get_title() == "none, 0 hole(s), 0 slot(s)"
+
+
+def _washer(size=48):
+    y, x = np.mgrid[:size, :size]
+    r = np.hypot(x - size / 2, y - size / 2)
+    return ((r < 0.375 * size) & (r > 0.15 * size)) * 1.0
+
+
+def test_bad_features_and_axes_are_named():
+    import pytest
+
+    image = _washer()
+    with pytest.raises(TypeError, match=r"`features` must be a TactileFeatures, got None"):
+        plot_features(image, None, 1e-3)
+    with pytest.raises(TypeError, match=r"`ax` must be an Axes, got 'x'"):
+        plot_features(image, extract(image, 1e-3), 1e-3, ax="x")
+
+
+def test_image_must_be_two_dimensional():
+    import pytest
+
+    image = _washer()
+    with pytest.raises(ValueError, match=r"`image` must be 2-D, got shape \(48,\)"):
+        plot_features(image[0], extract(image, 1e-3), 1e-3)
+
+
+def test_features_of_another_image_or_pitch_are_refused():
+    import pytest
+
+    image = _washer()
+    features = extract(image, 1e-3)
+    assert features.contact.present and features.holes.count == 1
+    with pytest.raises(
+        ValueError, match=r"`features` must be of `image` \(shape \(10, 10\)\).*shape \(48, 48\)"
+    ):
+        plot_features(np.zeros((10, 10)), features, 1e-3)
+    with pytest.raises(ValueError, match=r"`features` must be of `image`.*another pitch"):
+        plot_features(image, features, 2e-3)
+    # the same image at the same pitch is drawn, on given axes too
+    from matplotlib.figure import Figure
+
+    axes = Figure().add_subplot()
+    assert plot_features(image, features, (1e-3, 1e-3), ax=axes) is axes.figure

@@ -41,3 +41,20 @@ def test_a_failed_write_keeps_the_old_file(tmp_path, monkeypatch):
     assert error.value.filename == str(path)
     assert path.read_bytes() == b"old figure"
     assert [item.name for item in tmp_path.iterdir()] == ["inverse.png"]
+
+
+def test_bad_arguments_are_named_before_any_work(tmp_path):
+    import pytest
+
+    path = tmp_path / "inverse.png"
+    with pytest.raises(ValueError, match=r"`noise_fraction` must be >= 0, got -1"):
+        plot_reconstruction(path, noise_fraction=-1)
+    with pytest.raises(ValueError, match=r"`noise_fraction` must be finite, got nan"):
+        plot_reconstruction(path, noise_fraction=float("nan"))
+    with pytest.raises(ValueError, match=r"`rng` seed must be >= 0, got -1"):
+        plot_reconstruction(path, rng=-1)
+    with pytest.raises(TypeError, match=r"`rng` must be a numpy.random.Generator.*got None"):
+        plot_reconstruction(path, rng=None)
+    with pytest.raises(TypeError, match=r"`path` must be a file path, got None"):
+        plot_reconstruction(None)
+    assert not path.exists()

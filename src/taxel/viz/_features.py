@@ -16,7 +16,8 @@ def plot_features(image: Any, features: Any, sensor_or_pitch: Any, *, ax: Any = 
     Parameters
     ----------
     image : array_like, shape (rows, cols)
-        The tactile image the features came from.
+        The tactile image the features came from (refused when the features locate their
+        contact, holes or slots as on an image of another shape).
     features : taxel.features.TactileFeatures
         From `taxel.features.extract`.
     sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
@@ -27,6 +28,14 @@ def plot_features(image: Any, features: Any, sensor_or_pitch: Any, *, ax: Any = 
     Returns
     -------
     matplotlib.figure.Figure
+
+    Raises
+    ------
+    TypeError
+        When `features` is not a `TactileFeatures` or `ax` not a matplotlib Axes.
+    ValueError
+        When `image` is not a 2-D image, or `features` are not of an image of its shape
+        at this pitch.
 
     Examples
     --------
@@ -41,10 +50,9 @@ def plot_features(image: Any, features: Any, sensor_or_pitch: Any, *, ax: Any = 
     from matplotlib.figure import Figure  # no pyplot: no GUI backend, no global state
     from matplotlib.patches import Circle
 
-    from taxel.features import detect_edges, pitch_pair
+    from taxel.features import detect_edges
 
-    array = np.asarray(image, dtype=float)
-    row_pitch, col_pitch = pitch_pair(sensor_or_pitch)
+    array, (row_pitch, col_pitch) = _checked(image, features, sensor_or_pitch, ax)
     rows, cols = array.shape
 
     def to_index(x: float, y: float) -> tuple[float, float]:
@@ -95,3 +103,53 @@ def plot_features(image: Any, features: Any, sensor_or_pitch: Any, *, ax: Any = 
     ax.set_xlabel("column")
     ax.set_ylabel("row")
     return figure
+
+
+# How far, in taxels, the shape implied by a feature's index and position may lie from the
+# image's (float32 rounding of the positions, far below a taxel).
+_SHAPE_TOLERANCE = 0.01
+
+
+def _checked(
+    image: Any, features: Any, sensor_or_pitch: Any, ax: Any
+) -> tuple[np.ndarray, tuple[float, float]]:
+    """The image as a float array and the (row, col) pitch, once every input is checked."""
+    from matplotlib.axes import Axes
+
+    from taxel._validation import as_finite_array, check_instance
+    from taxel.features import TactileFeatures, pitch_pair
+    from taxel.features._sensor import check_image_shape
+
+    array = as_finite_array("image", image, ndim=2)
+    check_instance("features", features, TactileFeatures)
+    pitch = pitch_pair(sensor_or_pitch)
+    check_image_shape(array.shape, sensor_or_pitch)
+    if ax is not None:
+        check_instance("ax", ax, Axes)
+    _check_same_image(features, array.shape, pitch)
+    return array, pitch
+
+
+def _check_same_image(features: Any, shape: tuple[int, ...], pitch: tuple[float, float]) -> None:
+    """Raise when `features` locate something as on an image of another shape (or pitch).
+
+    The features do not record their image's shape, but each located item (the contact,
+    its regions, holes and slots) has both a taxel index and a position in the sensor
+    frame, ``x = (col - (cols - 1) / 2) p_col``: together they give the image's shape. An
+    image without contact records nothing to compare, and is drawn as it is.
+    """
+    contact = features.contact
+    located = [(region.centroid_index, region.centroid_m) for region in contact.regions]
+    if contact.present and contact.centroid_index is not None and contact.centroid_m is not None:
+        located.append((contact.centroid_index, contact.centroid_m))
+    located += [(item.center_index, item.center_m) for item in features.holes.items]
+    located += [(item.center_index, item.center_m) for item in features.slots.items]
+    for (row, col), (x, y) in located:
+        implied = (2 * (row - y / pitch[0]) + 1, 2 * (col - x / pitch[1]) + 1)
+        if any(abs(a - b) > _SHAPE_TOLERANCE for a, b in zip(implied, shape, strict=True)):
+            raise ValueError(
+                f"`features` must be of `image` (shape {tuple(shape)}) at `sensor_or_pitch` "
+                f"{pitch}, got features located as on an image of shape "
+                f"({implied[0]:.4g}, {implied[1]:.4g}) at that pitch: another image, or "
+                "another pitch"
+            )

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 from typing import Any
 
@@ -31,7 +32,7 @@ def plot_reconstruction(
     sensor : ForwardModelSpec or str, optional
         Default: the vhdta128 geometry (d = 3.9 taxel pitches) on a 40 x 40 patch.
     noise_fraction : float, default 0.001
-        Noise std as a fraction of the sensor's full scale (or of the peak reading).
+        Noise std as a fraction of the sensor's full scale (or of the peak reading); >= 0.
     order : {0, 1, 2}, default 1
         Tikhonov order of the regularized inverse.
     rng : int or numpy.random.Generator, default 0
@@ -53,6 +54,7 @@ def plot_reconstruction(
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure  # no pyplot: no GUI backend, no global state
 
+    from taxel._validation import as_rng, check_positive
     from taxel.io import write_files
     from taxel.reconstruction import (
         TikhonovSolver,
@@ -61,12 +63,17 @@ def plot_reconstruction(
         naive_inverse,
     )
 
+    if not isinstance(path, str | os.PathLike):
+        raise TypeError(f"`path` must be a file path, got {path!r}")
+    noise_fraction = check_positive("noise_fraction", noise_fraction, allow_zero=True)
+    generator = as_rng("rng", rng)
+    if generator is None:  # the figure shows noise: a seed or a Generator is needed
+        raise TypeError("`rng` must be a numpy.random.Generator or an int seed, got None")
     spec = (
         forward_model_preset("vhdta128", shape=(40, 40))
         if sensor is None
         else as_forward_model_spec(sensor)
     )
-    generator = np.random.default_rng(rng)
     truth = _scene(spec)
     solver = TikhonovSolver(spec, order=order)
     clean = solver.operator.apply(truth)
