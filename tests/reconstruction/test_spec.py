@@ -35,6 +35,13 @@ def test_dead_taxels_from_mask_or_pairs():
     assert from_mask == from_pairs and from_mask.dead_taxels == ((1, 2), (3, 0))
     assert np.array_equal(~from_mask.live_taxels, mask)
     assert hash(from_mask) == hash(from_pairs)  # usable as a cache key
+    whole = ForwardModelSpec((4.0, 5), 1e-3, COVER, 1e-3, dead_taxels=[(3.0, 0), (1, 2)])
+    assert whole == from_pairs and whole.shape == (4, 5)
+
+
+def test_preset_refuses_a_triple_as_a_dead_taxel():
+    with pytest.raises(ValueError, match=r"`dead_taxels` must be a boolean mask or \(row, col\)"):
+        forward_model_preset("resistive16", dead_taxels=[(1, 2, 3)])
 
 
 class _Sensor:
@@ -59,6 +66,15 @@ def test_duck_typing():
         ({"oversampling": 1.5}, "`oversampling` must be an integer"),
         ({"dead_taxels": [(9, 9)]}, "`dead_taxels` must lie inside"),
         ({"noise_level": 0.0}, "`noise_level` must be > 0"),
+        ({"shape": (16.5, 16)}, r"`shape` must be a whole number, got 16.5"),
+        ({"shape": 16}, r"`shape` must be a \(rows, cols\) pair, got 16"),
+        ({"oversampling": "2"}, r"`oversampling` must be an integer in 1..8, got '2'"),
+        ({"dead_taxels": [(1, 2, 3)]}, r"`dead_taxels` must be a boolean mask or \(row, col\)"),
+        ({"dead_taxels": [1, 2, 3, 4]}, r"`dead_taxels` must be .* pairs, got \[1, 2, 3, 4\]"),
+        ({"dead_taxels": [(1, 2), (1, 2, 3)]}, r"`dead_taxels` must be a boolean mask"),
+        ({"dead_taxels": np.ones((4, 4), int)}, r"`dead_taxels` must be a boolean mask"),
+        ({"dead_taxels": [(1.5, 2)]}, r"`dead_taxels` must hold whole-number \(row, col\)"),
+        ({"dead_taxels": [("a", "b")]}, r"`dead_taxels` must hold whole-number"),
     ],
 )
 def test_bad_spec(changes, message):

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_choice, check_positive
+from taxel._validation import check_choice, check_count, check_grid_shape, check_positive
 from taxel.mechanics import ElasticMaterial
 from taxel.sensor import TactileSensor, make_sensor
 
@@ -88,10 +88,7 @@ class ForwardModelSpec:
     noise_level: float | None = None
 
     def __post_init__(self) -> None:
-        try:
-            rows, cols = (int(n) for n in self.shape)
-        except (TypeError, ValueError):
-            raise ValueError(f"`shape` must be a (rows, cols) pair, got {self.shape!r}") from None
+        rows, cols = check_grid_shape("shape", self.shape)
         if rows < 2 or cols < 2:
             raise ValueError(f"`shape` must be at least (2, 2), got {self.shape!r}")
         object.__setattr__(self, "shape", (rows, cols))
@@ -108,11 +105,15 @@ class ForwardModelSpec:
                     f"`depth` must be <= `thickness` ({thickness:g} m), got {depth:g}"
                 )
             object.__setattr__(self, "thickness", thickness)
-        if int(self.oversampling) != self.oversampling or not 1 <= self.oversampling <= 8:
+        try:
+            oversampling = check_count("oversampling", self.oversampling)
+        except (TypeError, ValueError):
+            oversampling = 0  # not a whole number: refused below
+        if not 1 <= oversampling <= 8:
             raise ValueError(
                 f"`oversampling` must be an integer in 1..8, got {self.oversampling!r}"
             )
-        object.__setattr__(self, "oversampling", int(self.oversampling))
+        object.__setattr__(self, "oversampling", oversampling)
         object.__setattr__(self, "dead_taxels", _as_taxel_list(self.dead_taxels, (rows, cols)))
         for name in ("full_scale", "noise_level"):
             value = getattr(self, name)
@@ -147,16 +148,29 @@ def _as_taxel_list(dead: Any, shape: tuple[int, int]) -> tuple[tuple[int, int], 
     """Dead taxels as a sorted tuple of (row, col), from a boolean mask or a list of pairs."""
     if dead is None:
         return ()
-    array = np.asarray(dead)
+    try:
+        array = np.asarray(dead)
+    except ValueError:  # ragged: pairs and triples mixed
+        raise ValueError(
+            f"`dead_taxels` must be a boolean mask or (row, col) pairs, got {dead!r}"
+        ) from None
     if array.dtype == bool:
         if array.shape != shape:
             raise ValueError(f"`dead_taxels` mask must have shape {shape}, got {array.shape}")
         pairs = np.argwhere(array)
     else:
-        pairs = array.reshape(-1, 2) if array.size else np.empty((0, 2), dtype=int)
-        if pairs.size and (
-            np.any(pairs < 0) or np.any(pairs[:, 0] >= shape[0]) or np.any(pairs[:, 1] >= shape[1])
-        ):
+        if array.size == 0:
+            return ()
+        if array.ndim != 2 or array.shape[1] != 2:
+            raise ValueError(
+                f"`dead_taxels` must be a boolean mask or (row, col) pairs, got {dead!r}"
+            )
+        if array.dtype.kind not in "iuf" or not np.all(np.isfinite(array) & (array % 1 == 0)):
+            raise ValueError(
+                f"`dead_taxels` must hold whole-number (row, col) indices, got {dead!r}"
+            )
+        pairs = array.astype(int)
+        if np.any(pairs < 0) or np.any(pairs[:, 0] >= shape[0]) or np.any(pairs[:, 1] >= shape[1]):
             raise ValueError(f"`dead_taxels` must lie inside the {shape} array, got {dead!r}")
     result = tuple(sorted({(int(r), int(c)) for r, c in pairs}))
     if len(result) >= shape[0] * shape[1]:
