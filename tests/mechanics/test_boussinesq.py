@@ -136,3 +136,32 @@ def test_rectangle_stress_is_integral_of_point_load(x, y):
     )
     got = rectangle_stress(x, y, (x1, x2, y1, y2), DEPTH)
     assert got == pytest.approx(expected, rel=1e-9)
+
+
+def test_arrays_that_do_not_broadcast_are_named():
+    radius, depth = np.zeros(3), np.full(2, DEPTH)
+    both = r"`radius` and `depth` must have shapes that broadcast together, got \(3,\) and \(2,\)"
+    with pytest.raises(ValueError, match=both):
+        point_load_stress(radius, depth, 1.0)
+    with pytest.raises(ValueError, match=both):
+        point_load_displacement(radius, depth, 1.0, COVER)
+    xy = r"`x` and `y` must have shapes that broadcast together, got \(3,\) and \(2,\)"
+    with pytest.raises(ValueError, match=xy):
+        rectangle_strain(radius, np.zeros(2), (-1e-3, 1e-3, -1e-3, 1e-3), DEPTH, COVER)
+    with pytest.raises(ValueError, match=xy):
+        rectangle_stress(radius, np.zeros(2), (-1e-3, 1e-3, -1e-3, 1e-3), DEPTH)
+    with pytest.raises(ValueError, match=xy):
+        rectangle_displacement(radius, np.zeros(2), 1e-3, 1e-3, COVER)
+    # shapes that broadcast give the grid
+    assert point_load_stress(radius[:, None], depth, 1.0).shape == (3, 2)
+
+
+def test_bad_bounds_and_material_are_named():
+    with pytest.raises(ValueError, match=r"`bounds` must be \(x1, x2, y1, y2\), got \(0, 1, 0\)"):
+        rectangle_strain(0.0, 0.0, (0, 1, 0), DEPTH, COVER)
+    with pytest.raises(TypeError, match=r"`bounds` must be \(x1, x2, y1, y2\), got None"):
+        rectangle_stress(0.0, 0.0, None, DEPTH)
+    with pytest.raises(TypeError, match="`material` must be an ElasticMaterial, got None"):
+        point_load_strain(0.0, DEPTH, 1.0, None)
+    with pytest.raises(TypeError, match="`material` must be an ElasticMaterial, got 'rubber'"):
+        rectangle_displacement(0.0, 0.0, 1e-3, 1e-3, "rubber")

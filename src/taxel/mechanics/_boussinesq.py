@@ -13,7 +13,13 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_finite, check_positive
+from taxel._validation import (
+    as_finite_array,
+    check_broadcast,
+    check_finite,
+    check_instance,
+    check_positive,
+)
 from taxel.mechanics._materials import ElasticMaterial
 
 __all__ = [
@@ -62,9 +68,11 @@ def point_load_displacement(
     """
     radius = np.abs(as_finite_array("radius", radius))
     depth = as_finite_array("depth", depth)
+    check_broadcast(("radius", "depth"), radius, depth)
     if np.any(depth < 0):
         raise ValueError(f"`depth` must be >= 0, got {float(np.min(depth)):g}")
     force = check_finite("normal_force", normal_force)
+    check_instance("material", material, ElasticMaterial)
     nu, modulus = material.poisson_ratio, material.youngs_modulus
     rho = np.hypot(radius, depth)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -88,6 +96,7 @@ def point_load_stress(radius: Any, depth: Any, normal_force: float) -> np.ndarra
     """
     radius = np.abs(as_finite_array("radius", radius))
     depth = as_finite_array("depth", depth)
+    check_broadcast(("radius", "depth"), radius, depth)
     if np.any(depth <= 0):
         raise ValueError(f"`depth` must be > 0, got {float(np.min(depth)):g}")
     force = check_finite("normal_force", normal_force)
@@ -132,6 +141,7 @@ def point_load_strain(
     radius = as_finite_array("radius", radius)
     depth = check_positive("depth", depth)
     force = check_finite("normal_force", normal_force)
+    check_instance("material", material, ElasticMaterial)
     nu, modulus = material.poisson_ratio, material.youngs_modulus
     rho = np.hypot(radius, depth)
     return (
@@ -140,6 +150,18 @@ def point_load_strain(
         / (2 * np.pi * modulus)
         * (2 * nu * depth / rho**3 - 3 * depth**3 / rho**5)
     )
+
+
+def _bounds(bounds: Any) -> tuple[float, float, float, float]:
+    """The rectangle (x1, x2, y1, y2) [m] as finite floats, or raise naming `bounds`."""
+    try:
+        values = tuple(bounds)
+    except TypeError:
+        raise TypeError(f"`bounds` must be (x1, x2, y1, y2), got {bounds!r}") from None
+    if len(values) != 4:
+        raise ValueError(f"`bounds` must be (x1, x2, y1, y2), got {bounds!r}")
+    x1, x2, y1, y2 = (check_finite("bounds", value) for value in values)
+    return x1, x2, y1, y2
 
 
 def _rectangle_strain_corner(x: np.ndarray, y: np.ndarray, depth: float, nu: float) -> np.ndarray:
@@ -197,11 +219,13 @@ def rectangle_strain(
     """
     x = as_finite_array("x", x)
     y = as_finite_array("y", y)
-    x1, x2, y1, y2 = (check_finite("bounds", value) for value in bounds)
+    check_broadcast(("x", "y"), x, y)
+    x1, x2, y1, y2 = _bounds(bounds)
     if not (x1 < x2 and y1 < y2):
         raise ValueError(f"`bounds` must satisfy x1 < x2 and y1 < y2, got {bounds}")
     depth = check_positive("depth", depth)
     pressure = check_finite("pressure", pressure)
+    check_instance("material", material, ElasticMaterial)
     nu = material.poisson_ratio
     corner = _rectangle_strain_corner
     total = (
@@ -268,7 +292,8 @@ def rectangle_stress(
     """
     x = as_finite_array("x", x)
     y = as_finite_array("y", y)
-    x1, x2, y1, y2 = (check_finite("bounds", value) for value in bounds)
+    check_broadcast(("x", "y"), x, y)
+    x1, x2, y1, y2 = _bounds(bounds)
     if not (x1 < x2 and y1 < y2):
         raise ValueError(f"`bounds` must satisfy x1 < x2 and y1 < y2, got {bounds}")
     depth = check_positive("depth", depth)
@@ -347,9 +372,11 @@ def rectangle_displacement(
     """
     x = as_finite_array("x", x)
     y = as_finite_array("y", y)
+    check_broadcast(("x", "y"), x, y)
     a = check_positive("half_width", half_width)
     b = check_positive("half_height", half_height)
     pressure = check_finite("pressure", pressure)
+    check_instance("material", material, ElasticMaterial)
     t = _love_corner
     total = t(x + a, y + b) - t(x + a, y - b) - t(x - a, y + b) + t(x - a, y - b)
     return (1 - material.poisson_ratio**2) * pressure / (np.pi * material.youngs_modulus) * total
