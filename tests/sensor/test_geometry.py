@@ -1,3 +1,5 @@
+import re
+
 import numpy as np
 import pytest
 
@@ -54,6 +56,27 @@ def test_load_grid_blocks_average_to_taxels(layout, oversampling):
     assert np.allclose(grid.taxel_means(x), taxel_x, atol=1e-12)
     assert np.allclose(grid.taxel_means(y), taxel_y, atol=1e-12)
     assert np.allclose(grid.taxel_means(np.ones(grid.shape)), 1.0)
+    assert grid.taxel_means(np.ones((3, *grid.shape))).shape == (3, 4, 6)  # leading axes kept
+
+
+@pytest.mark.parametrize("layout", ["square", "hexagonal"])
+@pytest.mark.parametrize("oversampling", [1, 2])
+def test_load_grid_names_a_field_of_another_shape(layout, oversampling):
+    grid = ArrayGeometry(4, 6, 1e-3, layout=layout).load_grid(oversampling)
+    rows, cols = grid.shape
+    expected = rf"`field` must be on the load grid, shape \(\.\.\., {rows}, {cols}\)"
+    for field in (np.zeros((3, 3)), np.zeros(rows * cols), np.zeros((cols, rows))):
+        with pytest.raises(ValueError, match=expected + ", got " + re.escape(str(field.shape))):
+            grid.taxel_means(field)
+
+
+def test_fields_name_a_displacement_off_the_load_grid():
+    from taxel.sensor import make_sensor, taxel_fields
+
+    sensor = make_sensor("capacitive4x4")
+    grid = sensor.load_grid
+    with pytest.raises(ValueError, match=r"`displacement` must be on the sensor's load grid"):
+        taxel_fields(np.zeros(grid.shape), grid, sensor.cover, displacement=np.zeros((3, 3)))
 
 
 def test_bad_geometry_and_cover():

@@ -120,13 +120,18 @@ def taxel_fields(
         raise ValueError(
             f"`pressure` must be on the sensor's load grid {grid.shape}, got {pressure.shape}"
         )
+    if displacement is not None and np.shape(displacement) != grid.shape:
+        raise ValueError(
+            f"`displacement` must be on the sensor's load grid {grid.shape}, got "
+            f"{np.shape(displacement)}"
+        )
     zeros = np.zeros(grid.geometry.shape)
     key = (grid.shape, grid.spacing, cover.depth, cover.material, cover.thickness)
 
     def at_depth(name: str) -> np.ndarray:
         if name not in need:
             return zeros
-        return grid.taxel_means(_depth_operator(name, *key).apply(pressure))
+        return grid._means(_depth_operator(name, *key).apply(pressure))
 
     displacement_means = zeros
     if "displacement" in need:
@@ -135,9 +140,9 @@ def taxel_fields(
                 grid.shape, grid.spacing, cover.material, cover.thickness
             )
             displacement = operator.apply(pressure)
-        displacement_means = grid.taxel_means(displacement)
+        displacement_means = grid._means(displacement)
     return TaxelFields(
-        pressure=grid.taxel_means(pressure) if "pressure" in need else zeros,
+        pressure=grid._means(pressure) if "pressure" in need else zeros,
         stress=at_depth("stress"),
         strain=at_depth("strain"),
         displacement=displacement_means,

@@ -209,8 +209,39 @@ class LoadGrid:
         y = (np.arange(rows) - (rows - 1) / 2) * dy
         return np.broadcast_to(x[None, :], self.shape), np.broadcast_to(y[:, None], self.shape)
 
-    def taxel_means(self, field: np.ndarray) -> np.ndarray:
-        """Mean of a load-grid field over each taxel's block; shape (..., rows, cols)."""
+    def taxel_means(self, field: Any) -> np.ndarray:
+        """Mean of a load-grid field over each taxel's block.
+
+        Parameters
+        ----------
+        field : array_like, shape (..., *shape)
+            Values on the load grid's cells (leading axes are kept).
+
+        Returns
+        -------
+        numpy.ndarray, shape (..., rows, cols)
+            One value per taxel.
+
+        Examples
+        --------
+        >>> grid = ArrayGeometry(2, 3, 1e-3).load_grid(2)
+        >>> grid.taxel_means(np.ones(grid.shape)).shape
+        (2, 3)
+        >>> grid.taxel_means(np.zeros((3, 3)))
+        Traceback (most recent call last):
+        ...
+        ValueError: `field` must be on the load grid, shape (..., 4, 6), got (3, 3)
+        """
+        field = np.asarray(field)
+        if field.ndim < 2 or field.shape[-2:] != self.shape:
+            rows, cols = self.shape
+            raise ValueError(
+                f"`field` must be on the load grid, shape (..., {rows}, {cols}), got {field.shape}"
+            )
+        return self._means(field)
+
+    def _means(self, field: np.ndarray) -> np.ndarray:
+        """`taxel_means` of a field known to be on the grid (the sensor's read: unchecked)."""
         block_rows, block_cols = self._block
         rows, cols = self.geometry.shape
         if (block_rows, block_cols) == (1, 1):  # one cell per taxel: nothing to average

@@ -243,7 +243,7 @@ class TactileSensor:
                     pressure, self.load_grid.spacing, depth, self.cover.material
                 )
             )
-        return self.load_grid.taxel_means(total)
+        return self.load_grid._means(total)
 
     # ---------------------------------------------------------------- transducer, readout
     def respond(self, quantity: Any, *, rng: Any = None) -> np.ndarray:
