@@ -91,3 +91,29 @@ def test_errors_name_the_parameter():
         MicrobendTransducer(rows=2, cols=3).invert(np.ones(4))
     with pytest.raises(ValueError, match=r"`rows` must be an integer in 1..4, got 5"):
         separable_pressure(np.ones(5), rows=5, crossing_area=1.0)
+
+
+def test_separable_pressure_checks_the_fiber_counts():
+    loads = np.ones(5)
+    # without cols, what follows the rows is the columns; with cols the count is checked
+    assert separable_pressure(loads, rows=4, crossing_area=1e-5).shape == (4, 1)
+    with pytest.raises(
+        ValueError,
+        match=r"`line_loads` must hold rows \+ cols = 4 \+ 4 = 8 values .* got shape \(5,\)",
+    ):
+        separable_pressure(loads, rows=4, cols=4, crossing_area=1e-5)
+    assert separable_pressure(np.ones((2, 8)), rows=4, cols=4, crossing_area=1e-5).shape == (
+        2,
+        4,
+        4,
+    )
+    with pytest.raises(ValueError, match=r"`cols` must be >= 1, got 0"):
+        separable_pressure(loads, rows=4, cols=0, crossing_area=1e-5)
+    with pytest.raises(ValueError, match=r"`rows` must be an integer in 1..4, got 4.5"):
+        separable_pressure(loads, rows=4.5, crossing_area=1e-5)
+    with pytest.raises(ValueError, match=r"`rows` must be an integer in 1..4, got None"):
+        separable_pressure(loads, rows=None, crossing_area=1e-5)
+    with pytest.raises(ValueError, match=r"`line_loads` must hold rows \+ cols >= 2 .* \(1,\)"):
+        separable_pressure([1.0], rows=1, crossing_area=1e-5)
+    with pytest.raises(ValueError, match=r"`line_loads` must hold .* got shape \(\)"):
+        separable_pressure(1.0, rows=1, crossing_area=1e-5)

@@ -23,7 +23,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_positive, check_range
+from taxel._validation import as_finite_array, check_count, check_positive, check_range
 
 __all__ = [
     "MicrobendTransducer",
@@ -145,7 +145,9 @@ def microbend_line_loads(
     return stiffness / bend_loss * np.log(source_power * transmission / power)
 
 
-def separable_pressure(line_loads: Any, *, rows: int, crossing_area: float) -> np.ndarray:
+def separable_pressure(
+    line_loads: Any, *, rows: int, crossing_area: float, cols: int | None = None
+) -> np.ndarray:
     r"""Pressure image from its row and column sums, assuming it factors as g(row) h(col) [Pa].
 
     Parameters
@@ -156,6 +158,11 @@ def separable_pressure(line_loads: Any, *, rows: int, crossing_area: float) -> n
         Number of row fibers.
     crossing_area : float
         Area per crossing [m^2], > 0.
+    cols : int, optional
+        Number of column fibers; when given, `line_loads` must hold ``rows + cols`` values
+        along its last axis. Without it the columns are whatever follows the `rows` values,
+        so give it whenever it is known: a row count off by one is otherwise read as one
+        more or one fewer column.
 
     Returns
     -------
@@ -169,18 +176,29 @@ def separable_pressure(line_loads: Any, *, rows: int, crossing_area: float) -> n
     --------
     >>> p = np.outer([0, 1, 2], [1, 0, 3, 0]) * 1e3
     >>> loads = np.concatenate([p.sum(1), p.sum(0)]) * 1e-4
-    >>> bool(np.allclose(separable_pressure(loads, rows=3, crossing_area=1e-4), p))
+    >>> bool(np.allclose(separable_pressure(loads, rows=3, cols=4, crossing_area=1e-4), p))
     True
     """
     loads = np.maximum(as_finite_array("line_loads", line_loads), 0.0)
-    if int(rows) != rows or not 1 <= rows < loads.shape[-1]:
+    if loads.ndim == 0 or loads.shape[-1] < 2:
         raise ValueError(
-            f"`rows` must be an integer in 1..{loads.shape[-1] - 1}, got {rows!r}"
-            if loads.ndim
-            else "`line_loads` must be at least 1-D"
+            "`line_loads` must hold rows + cols >= 2 values along its last axis, got shape "
+            f"{loads.shape}"
+        )
+    count = loads.shape[-1]
+    try:
+        n_rows = check_count("rows", rows)
+    except (TypeError, ValueError):
+        n_rows = 0  # refused below, naming the range
+    if not 1 <= n_rows < count:
+        raise ValueError(f"`rows` must be an integer in 1..{count - 1}, got {rows!r}")
+    if cols is not None and n_rows + (n_cols := check_count("cols", cols)) != count:
+        raise ValueError(
+            f"`line_loads` must hold rows + cols = {n_rows} + {n_cols} = {n_rows + n_cols} "
+            f"values along its last axis, got shape {loads.shape}"
         )
     crossing_area = check_positive("crossing_area", crossing_area)
-    row_loads, column_loads = loads[..., : int(rows)], loads[..., int(rows) :]
+    row_loads, column_loads = loads[..., :n_rows], loads[..., n_rows:]
     total = 0.5 * (row_loads.sum(axis=-1) + column_loads.sum(axis=-1))
     safe = np.where(total > 0, total, 1.0)[..., None, None]
     image = row_loads[..., :, None] * column_loads[..., None, :] / safe
@@ -288,5 +306,8 @@ class MicrobendTransducer:
     def invert(self, signal: Any, /) -> np.ndarray:
         """Separable estimate of the pressure image [Pa] from the detected powers [W]."""
         return separable_pressure(
-            self.line_loads(signal), rows=self.rows, crossing_area=self.crossing_area
+            self.line_loads(signal),
+            rows=self.rows,
+            cols=self.cols,
+            crossing_area=self.crossing_area,
         )
