@@ -113,3 +113,8 @@ def test_grid_shapes_and_broadcasting_pairs():
     check_broadcast(("x", "y"), np.zeros((1, 3)), np.zeros((4, 1)))
     with pytest.raises(ValueError, match=r"`x` and `y` .* together, got \(3,\) and \(4,\)"):
         check_broadcast(("x", "y"), np.zeros(3), np.zeros(4))
+    check_broadcast(("a", "b", "c"), np.zeros(3), np.zeros(()), np.zeros((2, 1)))
+    with pytest.raises(
+        ValueError, match=r"`a`, `b` and `c` .* together, got \(3,\), \(\) and \(2,\)"
+    ):
+        check_broadcast(("a", "b", "c"), np.zeros(3), np.zeros(()), np.zeros(2))

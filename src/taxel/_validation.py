@@ -161,14 +161,17 @@ def check_grid_shape(name: str, value: Any) -> tuple[int, int]:
     return check_count(name, rows), check_count(name, cols)
 
 
-def check_broadcast(names: tuple[str, str], first: np.ndarray, second: np.ndarray) -> None:
-    """Raise naming both arrays when their shapes do not broadcast together."""
+def check_broadcast(names: tuple[str, ...], *arrays: np.ndarray) -> None:
+    """Raise naming the arrays (one name each) when their shapes do not broadcast together."""
+    shapes = [array.shape for array in arrays]
     try:
-        np.broadcast_shapes(first.shape, second.shape)
+        np.broadcast_shapes(*shapes)
     except ValueError:
+        quoted = [f"`{name}`" for name in names]
+        listed = [str(shape) for shape in shapes]
         raise ValueError(
-            f"`{names[0]}` and `{names[1]}` must have shapes that broadcast together, got "
-            f"{first.shape} and {second.shape}"
+            f"{', '.join(quoted[:-1])} and {quoted[-1]} must have shapes that broadcast "
+            f"together, got {', '.join(listed[:-1])} and {listed[-1]}"
         ) from None
 
 

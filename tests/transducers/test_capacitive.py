@@ -135,3 +135,25 @@ def test_errors_name_the_parameter():
         CapacitiveTransducer().invert(0.01, method="linear")
     with pytest.raises(ValueError, match="`detector_capacitance` must be > 0"):
         detector_voltage(1e-12, **detector(stray=0.0))
+
+
+def test_arrays_that_do_not_broadcast_are_named():
+    wrong_length = r"`gap`, `permittivity` and `shear_offset` must have shapes that broadcast"
+    permittivity = np.full(2, 2.8 * VACUUM_PERMITTIVITY)
+    with pytest.raises(ValueError, match=wrong_length + r" together, got \(3,\), \(2,\) and \(\)"):
+        plate_capacitance(
+            np.full(3, 1e-4), plate_width=2e-3, plate_length=1e-3, permittivity=permittivity
+        )
+    # one permittivity per cell broadcasts
+    cells = plate_capacitance(
+        np.full(2, 1e-4), plate_width=2e-3, plate_length=1e-3, permittivity=permittivity
+    )
+    assert cells == pytest.approx([C0, C0])
+    with pytest.raises(ValueError, match=r"`voltage` and `unloaded_voltage` .* \(3,\) and \(2,\)"):
+        strain_from_detector_voltage(np.ones(3), np.ones(2))
+    cell = CapacitiveTransducer()
+    given = r"`strain`, `shear_offset` and `temperature` must have shapes that broadcast"
+    with pytest.raises(ValueError, match=given + r" together, got \(3,\), \(\) and \(2,\)"):
+        cell.respond(np.zeros(3), temperature=np.full(2, 300.0))
+    with pytest.raises(ValueError, match=given + r" together, got \(3,\), \(2,\) and \(\)"):
+        cell.respond(np.zeros(3), shear_offset=np.zeros(2))

@@ -129,3 +129,13 @@ def test_errors_name_the_parameter():
         unwrap_retardation(np.zeros(0))
     with pytest.raises(ValueError, match=r"`intensity` must be a path .*, got shape \(\)"):
         unwrap_retardation(0.5)
+
+
+def test_stress_components_that_do_not_broadcast_are_named():
+    with pytest.raises(
+        ValueError,
+        match=r"`stress_a`, `stress_b` and `shear_stress` must have shapes that broadcast "
+        r"together, got \(3,\), \(2,\) and \(\)",
+    ):
+        principal_stress_difference(np.zeros(3), np.zeros(2), 0.0)
+    assert principal_stress_difference(np.zeros((3, 1)), np.zeros(2), 1.0).shape == (3, 2)

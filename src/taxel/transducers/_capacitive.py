@@ -18,7 +18,13 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_choice, check_finite, check_positive
+from taxel._validation import (
+    as_finite_array,
+    check_broadcast,
+    check_choice,
+    check_finite,
+    check_positive,
+)
 from taxel.transducers._capacitive_detector import (
     capacitance_from_detector_voltage,
     detector_voltage,
@@ -50,7 +56,8 @@ def plate_capacitance(
     permittivity : float or array_like
         epsilon of the dielectric [F/m], > 0 (epsilon_r times `VACUUM_PERMITTIVITY`).
     shear_offset : float or array_like, default 0.0
-        Tangential offset dx of the top plate along l [m], |dx| <= l.
+        Tangential offset dx of the top plate along l [m], |dx| <= l. `gap`,
+        `permittivity` and `shear_offset` broadcast together.
 
     Returns
     -------
@@ -89,7 +96,11 @@ def plate_capacitance(
             f"`shear_offset` must satisfy |dx| <= plate_length = {plate_length:g}, "
             f"got {float(np.max(offset)):g}"
         )
-    return permittivity * plate_width * (plate_length - offset) / gap
+    try:
+        return permittivity * plate_width * (plate_length - offset) / gap
+    except ValueError:  # checked only on failure: the sensor's read calls this every frame
+        check_broadcast(("gap", "permittivity", "shear_offset"), gap, permittivity, offset)
+        raise
 
 
 _METHODS = ("exact", "chapter")
@@ -207,13 +218,18 @@ class CapacitiveTransducer:
         if np.any(strain <= -1):
             raise ValueError(f"`strain` must be > -1, got {float(np.min(strain)):g}")
         permittivity, gap = self._thermal(temperature)
-        cell = plate_capacitance(
-            gap * (1.0 + strain),
-            plate_width=self.plate_width,
-            plate_length=self.plate_length,
-            permittivity=permittivity,
-            shear_offset=shear_offset,
-        )
+        try:
+            cell = plate_capacitance(
+                gap * (1.0 + strain),
+                plate_width=self.plate_width,
+                plate_length=self.plate_length,
+                permittivity=permittivity,
+                shear_offset=shear_offset,
+            )
+        except ValueError:  # name what was given, not the plate law's own parameters
+            offset = as_finite_array("shear_offset", shear_offset)
+            check_broadcast(("strain", "shear_offset", "temperature"), strain, offset, gap)
+            raise
         return cell + self.stray_capacitance
 
     def respond(

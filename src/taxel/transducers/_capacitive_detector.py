@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_positive
+from taxel._validation import as_finite_array, check_broadcast, check_positive
 
 __all__ = [
     "capacitance_from_detector_voltage",
@@ -189,4 +189,8 @@ def strain_from_detector_voltage(voltage: Any, unloaded_voltage: Any) -> np.ndar
         raise ValueError(
             f"`unloaded_voltage` must be > 0, got {float(np.min(unloaded_voltage)):g}"
         )
-    return -(voltage - unloaded_voltage) / voltage
+    try:
+        return -(voltage - unloaded_voltage) / voltage
+    except ValueError:  # checked only on failure: inverting a frame needs no extra pass
+        check_broadcast(("voltage", "unloaded_voltage"), voltage, unloaded_voltage)
+        raise

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_choice, check_positive
+from taxel._validation import as_finite_array, check_broadcast, check_choice, check_positive
 
 __all__ = [
     "FIELDS",
@@ -34,7 +34,7 @@ def principal_stress_difference(stress_a: Any, stress_b: Any, shear_stress: Any)
     stress_a, stress_b : array_like
         The two normal stresses in the plane normal to the light [Pa].
     shear_stress : array_like
-        The shear stress in that plane [Pa].
+        The shear stress in that plane [Pa] (the three broadcast together).
 
     Returns
     -------
@@ -51,7 +51,11 @@ def principal_stress_difference(stress_a: Any, stress_b: Any, shear_stress: Any)
     a = as_finite_array("stress_a", stress_a)
     b = as_finite_array("stress_b", stress_b)
     shear = as_finite_array("shear_stress", shear_stress)
-    return np.hypot(a - b, 2.0 * shear)
+    try:
+        return np.hypot(a - b, 2.0 * shear)
+    except ValueError:  # checked only on failure, as the arithmetic costs less than a check
+        check_broadcast(("stress_a", "stress_b", "shear_stress"), a, b, shear)
+        raise
 
 
 def photoelastic_retardation(
