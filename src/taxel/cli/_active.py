@@ -363,7 +363,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         nargs=2,
         metavar=("LIGHT", "FIRM"),
         help="the light and the firm press [N] (12 39); at most the finger's limit, the "
-        "sensor's full-scale pressure over a quarter of its area (capacitive4x4: 5 N); a "
+        "sensor's full-scale pressure over a quarter of its area (photoelastic64: 12.8 N); a "
         "--table is made at its forces",
     )
     edge.add_argument("--sensor", type=preset, default="vhdta128", help="sensor preset")
