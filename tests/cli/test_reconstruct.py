@@ -290,7 +290,7 @@ def test_a_batch_of_any_shape_is_reconstructed_frame_by_frame(frame_file, tmp_pa
     assert len(forces.split(", ")) == 4  # one force per frame
 
 
-def test_a_failed_write_names_out_and_leaves_nothing(frame_file, tmp_path, capsys, monkeypatch):
+def test_a_failed_write_names_out_and_never_writes_it(frame_file, tmp_path, capsys, monkeypatch):
     from pathlib import Path
 
     from taxel.io import _writers
@@ -306,6 +306,7 @@ def test_a_failed_write_names_out_and_leaves_nothing(frame_file, tmp_path, capsy
     assert capsys.readouterr().err == (
         f"taxel reconstruct: error: --out {out} cannot be written (No space left on device)\n"
     )
+    assert not out.exists()
 
 
 def test_a_calibration_of_another_kind_is_named(tmp_path, capsys):

@@ -226,7 +226,7 @@ def test_a_constant_recording_is_named(folders, tmp_path, capsys):
     assert error.startswith(f"taxel texture: error: {constant}: ") and "constant" in error
 
 
-def test_a_deeply_nested_model_is_refused(folders, tmp_path, capsys):
+def test_a_deeply_nested_model_is_refused(folders, tmp_path, capsys, monkeypatch):
     _, test = folders
     deep = tmp_path / "deep.json"
     deep.write_text("[" * 100_000 + "]" * 100_000)
@@ -234,4 +234,10 @@ def test_a_deeply_nested_model_is_refused(folders, tmp_path, capsys):
     assert main(["texture", "classify", recording, "--model", str(deep)]) == 2
     assert _one_line_error(capsys) == (
         f"taxel texture: error: --model {deep}: nested too deeply to be a texture classifier\n"
+    )
+    # given as ./deep.json, which the loader reads (and names) as deep.json
+    monkeypatch.chdir(tmp_path)
+    assert main(["texture", "classify", recording, "--model", "./deep.json"]) == 2
+    assert _one_line_error(capsys) == (
+        "taxel texture: error: --model deep.json: nested too deeply to be a texture classifier\n"
     )

@@ -25,6 +25,16 @@ def test_npz_single_array_and_key(tmp_path):
     np.testing.assert_array_equal(read_frame(tmp_path / "two.npz", key="second"), GRID + 1)
 
 
+def test_npz_with_metadata_beside_its_array(tmp_path):
+    import zipfile
+
+    np.savez(tmp_path / "noted.npz", frame=GRID)
+    with zipfile.ZipFile(tmp_path / "noted.npz", "a") as archive:
+        archive.writestr("meta.json", '{"sensor": "resistive16"}')
+    np.testing.assert_array_equal(read_frame(tmp_path / "noted.npz"), GRID)
+    np.testing.assert_array_equal(read_frame(tmp_path / "noted.npz", key="frame"), GRID)
+
+
 def test_npz_ambiguous_or_missing_key(tmp_path):
     np.savez(tmp_path / "two.npz", first=GRID, second=GRID + 1)
     with pytest.raises(ValueError, match=r"two\.npz: holds 2 arrays \(first, second\)"):

@@ -99,8 +99,9 @@ def test_a_virtual_folder_is_refused_when_checked():
         check_new_file("/proc/frame.npy")
 
 
-def test_the_suffix_is_checked_as_written(tmp_path):
-    # Calibration.save, np.save and the readers' users expect it in lower case
-    expected = r"must name a .npz file \(in lower case\), got '.*C.NPZ'"
-    with pytest.raises(ValueError, match=expected):
-        check_new_file(tmp_path / "C.NPZ", suffix=".npz")
+def test_the_suffix_is_checked_in_any_case(tmp_path):
+    # A.NPY is a .npy file (the readers take it too); a .txt is not
+    target = write_frame(tmp_path / "A.NPY", np.eye(2))
+    assert target.name == "A.NPY" and np.array_equal(read_frame(target), np.eye(2))
+    with pytest.raises(ValueError, match=r"must name a .npz file, got '.*C.txt'"):
+        check_new_file(tmp_path / "C.txt", suffix=".npz")

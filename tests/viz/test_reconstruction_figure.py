@@ -1,4 +1,4 @@
-"""The naive-against-regularized figure is written as a PNG."""
+"""The naive-against-regularized figure is written as a PNG (or the format its suffix names)."""
 
 import matplotlib
 import numpy as np
@@ -12,6 +12,14 @@ def test_writes_a_png(tmp_path):
     assert path.stat().st_size > 20_000
     image = matplotlib.image.imread(path)
     assert image.shape[0] > 500 and np.ptp(image) > 0.5  # not blank
+
+
+def test_writes_the_format_its_suffix_names(tmp_path):
+    svg = plot_reconstruction(tmp_path / "inverse.svg", sensor="resistive16")
+    assert svg.read_bytes().lstrip()[:5] == b"<?xml"
+    odd = plot_reconstruction(tmp_path / "inverse.figure", sensor="resistive16")
+    assert odd.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"  # a suffix matplotlib does not know
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["inverse.figure", "inverse.svg"]
 
 
 def test_import_taxel_stays_light():

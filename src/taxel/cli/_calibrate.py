@@ -7,6 +7,7 @@ import sys
 
 from taxel.cli._arguments import preset, seed
 from taxel.cli._files import writing
+from taxel.cli._main import CommandLineError
 
 __all__ = ["register"]
 
@@ -15,6 +16,11 @@ def _run(arguments: argparse.Namespace) -> int:
     from taxel.io import check_new_file
     from taxel.sensor import calibrate, calibration_error, make_sensor
 
+    if not arguments.out.endswith(".npz") and arguments.out.lower().endswith(".npz"):
+        # Calibration.save takes '.npz' as written; found here, not after the calibration
+        raise CommandLineError(
+            f"--out must name a .npz file (in lower case), got {arguments.out!r}"
+        )
     out = check_new_file(arguments.out, suffix=".npz", overwrite=arguments.overwrite, name="--out")
     sensor = make_sensor(arguments.sensor)
     calibration = calibrate(sensor, rng=arguments.seed)

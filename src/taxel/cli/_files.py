@@ -57,6 +57,6 @@ def reading(flag: str, path: str | os.PathLike[str]) -> Iterator[None]:
         message = str(error)
         if message.startswith("`path` "):
             raise ValueError(f"{flag} {message.removeprefix('`path` ')}") from None
-        if message.startswith(f"{path}:"):
+        if message.startswith((f"{path}:", f"{Path(path)}:")):  # (./x.json reads as x.json)
             raise ValueError(f"{flag} {message}") from None
         raise

@@ -100,6 +100,8 @@ def read_array(path: str | os.PathLike[str]) -> np.ndarray:
 def read_archive(path: str | os.PathLike[str]) -> dict[str, np.ndarray]:
     """Every array of an .npz file, by name, each checked as `read_array` checks a .npy.
 
+    Members that are not .npy files (metadata stored beside the arrays) are left out.
+
     Raises
     ------
     FileNotFoundError
@@ -113,6 +115,8 @@ def read_archive(path: str | os.PathLike[str]) -> dict[str, np.ndarray]:
     try:
         with path.open("rb") as handle, zipfile.ZipFile(handle) as archive:
             for member in archive.infolist():
+                if not member.filename.endswith(".npy"):
+                    continue  # another file stored beside the arrays (a note, metadata)
                 name = member.filename.removesuffix(".npy")
                 with archive.open(member) as stream:
                     _check_header(stream, member.file_size)

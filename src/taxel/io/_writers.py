@@ -24,10 +24,11 @@ def check_new_file(
 ) -> Path:
     """Check that `path` may be written, and return it as a Path.
 
-    It must have the right suffix (in lower case, as written), lie in a folder that exists
-    and takes new files, not be an existing file (unless `overwrite`), and never be one of
-    the `inputs`. Whether the folder takes new files is tried by creating and removing an
-    empty temporary file in it, so that a command finds out before its work, not after.
+    It must have the right suffix (in any case: ``.NPY`` is a .npy file), lie in a folder
+    that exists and takes new files, not be an existing file (unless `overwrite`), and
+    never be one of the `inputs`. Whether the folder takes new files is tried by creating
+    and removing an empty temporary file in it, so that a command finds out before its
+    work, not after.
 
     Raises
     ------
@@ -48,9 +49,8 @@ def check_new_file(
     """
     target = Path(path)
     label = name if name.startswith("--") else f"`{name}`"  # a flag, or a parameter
-    if suffix is not None and target.suffix != suffix:
-        case = " (in lower case)" if target.suffix.lower() == suffix else ""
-        raise ValueError(f"{label} must name a {suffix} file{case}, got {str(target)!r}")
+    if suffix is not None and target.suffix.lower() != suffix:
+        raise ValueError(f"{label} must name a {suffix} file, got {str(target)!r}")
     if not target.parent.is_dir():
         raise ValueError(f"{label} is in a folder that does not exist: {str(target.parent)!r}")
     if target.is_dir():

@@ -19,7 +19,7 @@ def plot_reconstruction(
     order: int = 1,
     rng: int | np.random.Generator = 0,
 ) -> Path:
-    """Write a PNG comparing the naive and the regularized inverse of one frame.
+    """Write a figure comparing the naive and the regularized inverse of one frame.
 
     Panels: the true pressure (a sphere and a flat punch), the naive inverse
     (lambda = 0), the Tikhonov inverse with lambda chosen by GCV, the L-curve with the GCV
@@ -28,7 +28,8 @@ def plot_reconstruction(
     Parameters
     ----------
     path : str or pathlib.Path
-        Output PNG.
+        Output file, in the format its suffix names (.png, .svg, .pdf, ...; PNG for a
+        suffix matplotlib does not know).
     sensor : ForwardModelSpec or str, optional
         Default: the vhdta128 geometry (d = 3.9 taxel pitches) on a 40 x 40 patch.
     noise_fraction : float, default 0.001
@@ -145,8 +146,11 @@ def plot_reconstruction(
         f"pitch {spec.taxel_pitch * 1e3:.3g} mm (d / pitch = {spec.depth / spec.taxel_pitch:.1f})"
     )
     path = Path(path)
-    # written beside the target and renamed once complete: a failed write keeps an old file
-    write_files([(path, lambda temporary: figure.savefig(temporary, dpi=110, format="png"))])
+    # in the format the suffix names (the temporary file's name has none), written beside
+    # the target and renamed once complete: a failed write keeps an old file
+    kind = path.suffix[1:].lower()
+    kind = kind if kind in figure.canvas.get_supported_filetypes() else "png"
+    write_files([(path, lambda temporary: figure.savefig(temporary, dpi=110, format=kind))])
     return path
 
 
