@@ -239,6 +239,11 @@ def test_the_cover_must_be_a_material(material):
 def test_heights_are_a_gap_and_cannot_be_negative(sphere_heights):
     with pytest.raises(ValueError, match="`heights` must be >= 0 .*, got a minimum of -0.000999"):
         solve_contact(sphere_heights - 1e-3, SPACING, COVER, normal_force=1.0)
+    # a vertex computed a rounding error below zero is zero
+    nudged = solve_contact(sphere_heights - 1e-19, SPACING, COVER, normal_force=1.0)
+    plain = solve_contact(sphere_heights, SPACING, COVER, normal_force=1.0)
+    assert nudged.normal_force == pytest.approx(plain.normal_force, rel=1e-9)
+    assert np.allclose(nudged.pressure, plain.pressure, atol=1e-6 * plain.pressure.max())
 
 
 @pytest.mark.parametrize(

@@ -146,6 +146,8 @@ def test_height_map_interpolates_and_has_no_material_outside():
     assert np.isinf(bowl.local_heights(np.array(5e-3), np.array(0.0)))
     with pytest.raises(ValueError, match="must not contain NaN"):
         HeightMap(np.array([[np.nan]]), 1e-3)
+    with pytest.raises(ValueError, match=r"above the indenter's lowest point .* -0.0001 m"):
+        HeightMap(values - 1e-4, 1e-3)
 
 
 def test_library_builds_every_named_indenter():

@@ -205,6 +205,9 @@ def _window_around(mask: np.ndarray, margin: int) -> tuple[slice, slice]:
     )
 
 
+_ROUNDING = 1e-12  # [m] heights this far below 0 are taken as 0
+
+
 def _check_heights(heights: Any) -> np.ndarray:
     try:
         array = np.asarray(heights, dtype=np.float64)
@@ -220,9 +223,10 @@ def _check_heights(heights: Any) -> np.ndarray:
     finite = array[np.isfinite(array)]
     if finite.size == 0:
         raise ValueError("`heights` must have at least one finite value (some material)")
-    # a gap cannot be negative: a negative minimum means the zero (first touch) is misplaced
+    # a gap cannot be negative: a negative minimum means the zero (first touch) is misplaced;
+    # a picometre below zero is rounding (a vertex computed as 1e-19 m below it)
     lowest = float(finite.min())
-    if lowest < 0:
+    if lowest < -_ROUNDING:
         raise ValueError(
             "`heights` must be >= 0 (0 at the indenter's lowest point), "
             f"got a minimum of {lowest:g} m"

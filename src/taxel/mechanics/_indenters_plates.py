@@ -117,8 +117,9 @@ class HeightMap(Indenter):
     Parameters
     ----------
     values : array_like, shape (rows, cols)
-        Heights [m] (+inf allowed for "no material"; NaN is not), cell centred at the
-        indenter's origin as in `grid_coordinates`.
+        Heights [m] above the indenter's lowest point, so >= 0 (+inf allowed for "no
+        material"; NaN is not), cell centred at the indenter's origin as in
+        `grid_coordinates`.
     spacing : float or tuple of float
         Sample spacing, or (dy, dx) [m].
 
@@ -139,6 +140,11 @@ class HeightMap(Indenter):
             raise ValueError(f"`values` must be 2-D, got shape {array.shape}")
         if np.isnan(array).any() or (array == -np.inf).any():
             raise ValueError("`values` must not contain NaN or -inf")
+        if array.size and array.min() < 0:
+            raise ValueError(
+                "`values` must be heights above the indenter's lowest point (>= 0), got a "
+                f"minimum of {array.min():g} m: subtract it"
+            )
         object.__setattr__(self, "_array", array)
         object.__setattr__(self, "spacing", as_spacing(self.spacing))
 
