@@ -390,6 +390,9 @@ def test_pitch_pair_and_duck_typed_sensor():
         # finite, but infinite in float32 (what the features compute in) or near it
         (np.full((8, 8), 1e39), 1e-3, ValueError, r"within \+-1e\+15 .* magnitude 1e\+39"),
         (np.eye(8) * -2e15, 1e-3, ValueError, r"within \+-1e\+15 .* magnitude 2e\+15"),
+        # one taxel beyond the limit (smoothing would hide it), and 64-bit integers
+        (np.pad([[5e15]], 4), 1e-3, ValueError, r"within \+-1e\+15 .* magnitude 5e\+15"),
+        (np.full((8, 8), 2**60, np.uint64), 1e-3, ValueError, r"magnitude 1.15e\+18"),
     ],
 )
 def test_bad_input(image, pitch, error, match):

@@ -197,28 +197,32 @@ def _as_image(image: Any) -> np.ndarray:
         raise ValueError(f"`image` must be 2-D (rows, cols), got shape {array.shape}")
     if min(array.shape) < 3:
         raise ValueError(f"`image` must be at least 3x3 taxels, got shape {array.shape}")
-    if kind == "f" and array.dtype.itemsize > 4:
-        with np.errstate(over="ignore"):  # values beyond float32's range: refused below
-            image32 = np.ascontiguousarray(array, dtype=np.float32)
-    else:
-        image32 = np.ascontiguousarray(array, dtype=np.float32)
+    if (kind == "f" and array.dtype.itemsize >= 4) or array.dtype.itemsize == 8:
+        _check_size(array)  # (smaller types cannot reach the limit)
+    image32 = np.ascontiguousarray(array, dtype=np.float32)
     # integers are finite; a float image is when its sum is (one pass instead of two)
     if kind == "f" and not math.isfinite(float(image32.sum(dtype=np.float64))):
         bad = int(image32.size - np.count_nonzero(np.isfinite(image32)))
-        if bad and np.isfinite(array).all():  # finite, beyond float32's range
-            _refuse_size(array)
-        if bad:
-            raise ValueError(f"`image` must be finite everywhere, got {bad} NaN or inf value(s)")
+        raise ValueError(f"`image` must be finite everywhere, got {bad} NaN or inf value(s)")
     return image32
 
 
-def _refuse_size(values: np.ndarray) -> None:
-    """Raise the error for an image with values beyond +-`_LARGEST_VALUE`."""
-    largest = float(np.abs(values.astype(np.float64)).max())
-    raise ValueError(
-        f"`image` values must lie within +-{_LARGEST_VALUE:.0e} (the features compute in "
-        f"float32), got a value of magnitude {largest:.3g}"
-    )
+def _check_size(array: np.ndarray) -> None:
+    """Raise when a value of `array` lies beyond +-`_LARGEST_VALUE` (or is inf)."""
+    if array.dtype.kind == "f":
+        low, high = cv2.minMaxLoc(np.ascontiguousarray(array))[:2]  # (one pass, no warning)
+    else:  # 64-bit integers, as Python integers (abs of the lowest int64 overflows)
+        low, high = int(array.min()), int(array.max())
+    largest = max(-low, high)
+    if largest > _LARGEST_VALUE:
+        finite = np.isfinite(array)
+        if not finite.all():  # an inf, or NaN beside a large value
+            bad = int(array.size - np.count_nonzero(finite))
+            raise ValueError(f"`image` must be finite everywhere, got {bad} NaN or inf value(s)")
+        raise ValueError(
+            f"`image` values must lie within +-{_LARGEST_VALUE:.0e} (the features compute in "
+            f"float32), got a value of magnitude {float(largest):.3g}"
+        )
 
 
 def laplacian_residual(image: np.ndarray, step: int = 1, *, whole: bool = False) -> np.ndarray:
@@ -351,8 +355,6 @@ def prepare(
         smooth = values
     noise = raw_noise * _smoothing_gain(smoothing)
     lowest, peak, _, peak_at = cv2.minMaxLoc(smooth)
-    if max(-lowest, peak) > _LARGEST_VALUE:  # (a smoothed value is never larger)
-        _refuse_size(values)
     level = lowest if baseline is None else check_finite("baseline", baseline)
     if abs(level) > _LARGEST_VALUE:
         raise ValueError(f"`baseline` must lie within +-{_LARGEST_VALUE:.0e}, got {level:.3g}")
