@@ -198,8 +198,9 @@ class ADMMSolver:
         if self.method == "tv":
             magnitude = np.sqrt(target[0] ** 2 + target[1] ** 2)
             # 1 - (weight / rho) / magnitude, at least 0, written so that it cannot overflow
-            excess = np.maximum(magnitude - self._weight / rho, 0.0)
-            shrink = np.divide(excess, magnitude, out=np.zeros_like(excess), where=magnitude > 0)
+            # (the numerator is never larger than the magnitude, and 0 where that is 0)
+            shrink = np.maximum(magnitude - self._weight / rho, 0.0)
+            shrink /= np.maximum(magnitude, 1e-300)
             z[:2] = target[:2] * shrink
         z[-1] = np.maximum(target[-1], 0.0)
         state.z = z
