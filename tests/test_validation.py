@@ -98,8 +98,15 @@ def test_rng_accepts_none_a_seed_or_a_generator():
     with pytest.raises(ValueError, match="`rng` seed must be >= 0, got -1"):
         as_rng("rng", -1)
     for bad in ["x", 1.5, True]:
-        with pytest.raises(TypeError, match="`rng` must be None, a numpy.random.Generator or"):
+        with pytest.raises(TypeError, match="`rng` must be None, a numpy.random.Generator, an"):
             as_rng("rng", bad)
+    # what numpy.random.default_rng takes as a seed: a 0-d integer array, a SeedSequence,
+    # a BitGenerator
+    seeded = np.random.default_rng(7).random()
+    for seed in [np.array(7), np.random.SeedSequence(7), np.random.PCG64(7)]:
+        assert as_rng("rng", seed).random() == seeded
+    with pytest.raises(TypeError, match=r"^`rng` must be a numpy.random.Generator, an int"):
+        as_rng("rng", None, allow_none=False)
 
 
 def test_grid_shapes_and_broadcasting_pairs():

@@ -189,15 +189,27 @@ def check_instance(name: str, value: Any, kind: type) -> None:
         raise TypeError(f"`{name}` must be {article} {kind.__name__}, got {_short(value)}")
 
 
-def as_rng(name: str, rng: Any) -> np.random.Generator | None:
+def as_rng(name: str, rng: Any, *, allow_none: bool = True) -> np.random.Generator | None:
     """Return `rng` as a NumPy Generator, or None for None (no noise).
 
-    An int >= 0 is a seed and a Generator is used as it is; anything else is refused.
+    A Generator is used as it is; an int >= 0 (also a 0-d integer array), a SeedSequence
+    or a BitGenerator seeds a new one, as `numpy.random.default_rng` does. Anything else
+    (a float, a string, a bool, a negative seed; None when not `allow_none`) is refused.
     """
-    if rng is None or isinstance(rng, np.random.Generator):
+    if rng is None and allow_none:
+        return None
+    if isinstance(rng, np.random.Generator):
         return rng
-    if isinstance(rng, int | np.integer) and not isinstance(rng, bool):
+    if isinstance(rng, np.random.SeedSequence | np.random.BitGenerator):
+        return np.random.default_rng(rng)
+    if isinstance(rng, np.ndarray) and rng.ndim == 0 and rng.dtype.kind in "iu":
+        rng = rng.item()
+    if isinstance(rng, int | np.integer) and not isinstance(rng, bool | np.bool_):
         if rng < 0:
             raise ValueError(f"`{name}` seed must be >= 0, got {int(rng)}")
         return np.random.default_rng(int(rng))
-    raise TypeError(f"`{name}` must be None, a numpy.random.Generator or an int seed, got {rng!r}")
+    kinds = "None, " if allow_none else ""
+    raise TypeError(
+        f"`{name}` must be {kinds}a numpy.random.Generator, an int seed or a SeedSequence, "
+        f"got {rng!r}"
+    )

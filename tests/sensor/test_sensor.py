@@ -188,7 +188,7 @@ def test_a_batch_of_frames_reads_as_each_frame():
         ({"indenter": None}, TypeError, "`indenter` must be an Indenter, got None"),
         ({"position": (0,)}, ValueError, r"`position` must be an \(x, y\) pair, got \(0,\)"),
         ({"initial": 3}, TypeError, "`initial` must be a ContactResult, got 3"),
-        ({"rng": "x"}, TypeError, "`rng` must be None, a numpy.random.Generator or an int"),
+        ({"rng": "x"}, TypeError, "`rng` must be None, a numpy.random.Generator, an int seed"),
         ({"rng": -1}, ValueError, "`rng` seed must be >= 0, got -1"),
         ({"rng": 1.5}, TypeError, "`rng` must be None"),
     ],

@@ -132,7 +132,7 @@ def test_protocol_and_errors():
         FtirTransducer(bright_level=20.0)
     with pytest.raises(ValueError, match="`waveguide_index` must exceed surrounding_index"):
         critical_angle(waveguide_index=1.3, surrounding_index=1.41)
-    with pytest.raises(TypeError, match="`rng` must be a numpy.random.Generator or an int"):
+    with pytest.raises(TypeError, match="`rng` must be a numpy.random.Generator, an int seed"):
         glass_scratches((4, 4), rng=0.5)
     with pytest.raises(ValueError, match="`contact_fraction` must lie in"):
         pressure_from_contact_fraction(1.5, contact_modulus=1e6, rms_slope=0.2)

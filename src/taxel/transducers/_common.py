@@ -51,8 +51,6 @@ def as_generator(name: str, rng: Any) -> np.random.Generator:
 
     There is no default: randomness is always explicit, and no global state is touched.
     """
-    if rng is None or isinstance(rng, str | float | bool):
-        raise TypeError(f"`{name}` must be a numpy.random.Generator or an int seed, got {rng!r}")
-    generator = as_rng(name, rng)
+    generator = as_rng(name, rng, allow_none=False)
     assert generator is not None
     return generator

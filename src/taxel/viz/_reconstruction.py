@@ -67,9 +67,7 @@ def plot_reconstruction(
     if not isinstance(path, str | os.PathLike):
         raise TypeError(f"`path` must be a file path, got {path!r}")
     noise_fraction = check_positive("noise_fraction", noise_fraction, allow_zero=True)
-    generator = as_rng("rng", rng)
-    if generator is None:  # the figure shows noise: a seed or a Generator is needed
-        raise TypeError("`rng` must be a numpy.random.Generator or an int seed, got None")
+    generator = as_rng("rng", rng, allow_none=False)  # the figure shows noise
     spec = (
         forward_model_preset("vhdta128", shape=(40, 40))
         if sensor is None
