@@ -68,6 +68,7 @@ def plot_reconstruction(
         raise TypeError(f"`path` must be a file path, got {path!r}")
     noise_fraction = check_positive("noise_fraction", noise_fraction, allow_zero=True)
     generator = as_rng("rng", rng, allow_none=False)  # the figure shows noise
+    assert generator is not None
     spec = (
         forward_model_preset("vhdta128", shape=(40, 40))
         if sensor is None
