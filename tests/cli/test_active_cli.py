@@ -214,6 +214,10 @@ def test_a_wrong_or_deeply_nested_file_names_its_flag(capsys, tmp_path, procedur
             ["stiffness", "--forces", "1", "1e308"],
             "--forces 1 1e+308: the finger with vhdta128 presses at most 112.6 N",
         ),
+        (
+            ["stiffness", "--forces", "0.3", "4", "--calibration", "/nonexistent/pad.json"],
+            "--forces 0.3 4: the light press must exceed the 0.5 N touch",
+        ),
     ],
 )
 def test_bad_values_are_refused_before_any_press(capsys, arguments, message):

@@ -198,6 +198,11 @@ def _stiffness(arguments: argparse.Namespace) -> int:
             f"--shape {arguments.shape} needs its --size-mm and --modulus-mpa "
             "(and optionally --poisson-ratio)"
         )
+    if arguments.forces[0] <= _TOUCH:  # the procedure touches at _TOUCH first
+        raise CommandLineError(
+            f"--forces {' '.join(f'{f:g}' for f in arguments.forces)}: the light press must "
+            f"exceed the {_TOUCH:g} N touch that finds the object first"
+        )
     _check_forces("--forces", arguments.forces, arguments.sensor)
     calibration = _file_or_build(
         arguments.calibration, PadCalibration.load, build, "pad calibration", "--calibration"
