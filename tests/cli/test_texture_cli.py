@@ -120,7 +120,7 @@ def test_errors_are_one_line(folders, tmp_path, capsys):
     )
     assert code == 2
     error = _one_line_error(capsys)
-    assert "_F150_V" in error and "`segment_length` must be at most the record's travel" in error
+    assert "_F150_V" in error and "--segment-length must be at most the record's travel" in error
     assert not model_path.exists()
 
     main(["texture", "fit", str(train), "--out", str(model_path)])
@@ -194,7 +194,7 @@ def test_a_version_1_model_gets_the_features_of_version_1(folders, tmp_path, cap
     static = texture_features(
         texture_signature(recording.readings, recording.time, recording.sliding_velocity)
     )
-    np.testing.assert_array_equal(_features(Path(files[0]), data["settings"]), static)
+    np.testing.assert_array_equal(_features(Path(files[0]), data["settings"], "--model"), static)
 
 
 def test_segment_lengths_out_of_range_are_refused(folders, tmp_path, capsys):
@@ -204,12 +204,14 @@ def test_segment_lengths_out_of_range_are_refused(folders, tmp_path, capsys):
         main(["texture", "fit", str(train), "--out", str(model_path), "--segment-length=1e308"])
     assert stop.value.code == 2
     assert "--segment-length: must be at most 100, got 1e308" in _one_line_error(capsys)
-    # 20 mm/s at 35 Hz: 0.57 mm per sample; a shorter segment used to pass silently
-    code = main(["texture", "fit", str(train), "--out", str(model_path), "--segment-length=1e-4"])
+    # 20 mm/s at 35 Hz: 0.57 mm per sample, 4.6 mm for 8; a shorter segment used to pass
+    # silently (lengthened to 8 samples)
+    code = main(["texture", "fit", str(train), "--out", str(model_path), "--segment-length=2e-3"])
     assert code == 2
     error = _one_line_error(capsys)
     assert "_F150_V" in error
-    assert "a segment of 0.0001 m (--segment-length) is shorter than one sample's travel" in error
+    assert "--segment-length must span at least 8 samples (0.004571 m at 0.02 m/s" in error
+    assert error.endswith("got 0.002\n")
     assert not model_path.exists()
 
 

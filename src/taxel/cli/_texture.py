@@ -34,27 +34,23 @@ _SIGNATURE_SETTINGS = (
 )
 
 
-def _features(path: Path, settings: Mapping[str, Any]) -> np.ndarray:
-    """Texture features of one recording; an error names the recording."""
+def _features(path: Path, settings: Mapping[str, Any], segment: str) -> np.ndarray:
+    """Texture features of one recording; an error names the recording.
+
+    `segment`: what set the segment length, named in its errors (a flag, or the model).
+    """
     from taxel.active import texture_features, texture_signature
     from taxel.io import read_fabricslide
 
     recording = read_fabricslide(path)
     options = {name: settings[name] for name in _SIGNATURE_SETTINGS if name in settings}
-    if "segment_length" in options:
-        step = abs(recording.sliding_velocity) / recording.sampling_rate
-        if options["segment_length"] < step:
-            raise ValueError(
-                f"{path}: a segment of {options['segment_length']:g} m (--segment-length) is "
-                f"shorter than one sample's travel here, {step:.3g} m"
-            )
     try:
         signature = texture_signature(
             recording.readings, recording.time, recording.sliding_velocity, **options
         )
         return texture_features(signature, per_taxel=bool(settings.get("per_taxel", True)))
     except ValueError as error:
-        raise ValueError(f"{path}: {error}") from None
+        raise ValueError(f"{path}: {str(error).replace('`segment_length`', segment)}") from None
 
 
 def _fit(arguments: argparse.Namespace) -> int:
@@ -85,7 +81,7 @@ def _fit(arguments: argparse.Namespace) -> int:
         "decorrelate_load": not arguments.keep_load_coherent,
         "per_taxel": not arguments.pooled_only,
     }
-    features = np.array([_features(path, settings) for path in files])
+    features = np.array([_features(path, settings, "--segment-length") for path in files])
     labels = [str(parse_fabricslide_name(path)["fabric"]) for path in files]
     model = fit_texture_classifier(
         features, labels, n_neighbors=arguments.neighbors, settings=settings
@@ -102,7 +98,9 @@ def _classify(arguments: argparse.Namespace) -> int:
 
     with reading("--model", arguments.model):
         model = TextureClassifier.load(arguments.model)
-    features = np.array([_features(Path(path), model.settings) for path in arguments.files])
+    features = np.array(
+        [_features(Path(path), model.settings, "the model's segment") for path in arguments.files]
+    )
     predictions = model.predict(features)
     if arguments.json:
         rows = [
@@ -148,7 +146,7 @@ def register(commands: Any) -> None:
         type=positive_in(0.0, 100.0),
         default=0.2,
         metavar="METRES",
-        help="travel per spectral segment [m] (0.2): at least one sample's travel and at most "
+        help="travel per spectral segment [m] (0.2): at least 8 samples' travel and at most "
         "a recording's",
     )
     fit.add_argument(
