@@ -34,7 +34,7 @@ def inverse_problem(
     """Naive against regularized reconstruction at rising noise, and the L-curve."""
     sensor = context.sensor("vhdta128")
     frame = sensor.press(make_indenter("sphere", radius=6.25e-3), normal_force=12.0)
-    assert frame.contact is not None  # a pressed frame carries its contact
+    assert frame.contact is not None and frame.fields is not None  # as a pressed frame does
     truth = frame.contact.pressure
     clean = -frame.fields.stress  # what a calibrated taxel reads: the pressure at its depth
     rng = context.rng(60)

@@ -47,24 +47,35 @@ _HYSTERESIS_OPERATORS = 8  # piezoelectric: only changes are seen
 class SensorFrame:
     """One frame of a sensor, with what produced it.
 
+    A simulated frame carries everything below; a frame read from a real sensor (by a
+    robot driver, see ``docs/robot-driver.md``) carries only `raw`, which is all the
+    features and the active procedures read.
+
     Attributes
     ----------
     raw : numpy.ndarray
         What the sensor outputs: ADC codes, camera levels, or volts when there is no ADC.
-    signal : numpy.ndarray
-        The transducer's ideal signal, before the readout electronics.
-    quantity : numpy.ndarray
-        The transducer's input at each taxel (its `quantity`, in its `quantity_unit`).
-    fields : TaxelFields
-        The mechanical fields at each taxel.
+    signal : numpy.ndarray or None
+        The transducer's ideal signal, before the readout electronics (None if measured).
+    quantity : numpy.ndarray or None
+        The transducer's input at each taxel (its `quantity`, in its `quantity_unit`; None
+        if measured).
+    fields : TaxelFields or None
+        The mechanical fields at each taxel (None if measured).
     contact : ContactResult or None
         The solved contact, when the frame came from pressing an indenter.
+
+    Examples
+    --------
+    >>> frame = SensorFrame(np.zeros((16, 16), np.uint16))  # a measured frame
+    >>> frame.raw.shape, frame.fields is None
+    ((16, 16), True)
     """
 
     raw: np.ndarray = field(repr=False)
-    signal: np.ndarray = field(repr=False)
-    quantity: np.ndarray = field(repr=False)
-    fields: TaxelFields = field(repr=False)
+    signal: np.ndarray | None = field(default=None, repr=False)
+    quantity: np.ndarray | None = field(default=None, repr=False)
+    fields: TaxelFields | None = field(default=None, repr=False)
     contact: ContactResult | None = field(default=None, repr=False)
 
 
