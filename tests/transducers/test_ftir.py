@@ -112,6 +112,10 @@ def test_scratches_are_fixed_reproducible_bright_streaks():
     assert not np.array_equal(first, glass_scratches((64, 64), rng=4, count=5))
     assert 0.0 < (first > 0).mean() < 0.25 and first.max() <= 0.25
     assert np.all(glass_scratches((8, 8), rng=0, count=0) == 0)
+    with pytest.raises(ValueError, match=r"`shape` must be a \(rows, cols\) pair, got \(8,\)"):
+        glass_scratches((8,), rng=0)
+    with pytest.raises(ValueError, match="`count` must be a whole number, got 2.5"):
+        glass_scratches((8, 8), rng=0, count=2.5)
     sensor = FtirTransducer(scratch_count=5, scratch_seed=3)
     pressure = np.zeros((64, 64))
     image = sensor.respond(pressure)

@@ -105,3 +105,13 @@ def test_crosstalk_is_self_adjoint_and_local():
     assert np.array_equal(neighbour_crosstalk(x), x)
     with pytest.raises(ValueError, match=r"`coupling` must lie in \[0, 1\), got 1"):
         neighbour_crosstalk(x, coupling=1.0)
+
+
+def test_a_unit_pattern_has_whole_positive_sizes_on_any_number_of_axes():
+    assert draw_faults((32,), dead=0.1, rng=0).dead.shape == (32,)  # a fibre sensor's signals
+    with pytest.raises(ValueError, match="`shape` must be a whole number, got 4.5"):
+        draw_faults((4.5, 4), dead=0.1, rng=0)
+    with pytest.raises(ValueError, match="`shape` must be >= 1, got -4"):
+        draw_gain_offset((-4, 4), gain_spread=0.1, offset_spread=0.1, rng=0)
+    with pytest.raises(ValueError, match="`shape` must be a sequence of sizes, got 5"):
+        draw_faults(5, dead=0.1, rng=0)

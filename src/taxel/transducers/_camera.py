@@ -9,7 +9,13 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_positive, check_range
+from taxel._validation import (
+    as_finite_array,
+    check_count,
+    check_grid_shape,
+    check_positive,
+    check_range,
+)
 from taxel.transducers._common import as_generator
 
 __all__ = ["camera_image", "glass_scratches"]
@@ -51,12 +57,9 @@ def glass_scratches(
     >>> bool(np.array_equal(a, b)), bool(a.max() <= 0.25), bool((a > 0).mean() < 0.3)
     (True, True, True)
     """
-    rows, cols = (int(n) for n in shape)
-    if rows < 1 or cols < 1:
-        raise ValueError(f"`shape` must be two positive sizes, got {shape!r}")
+    rows, cols = check_grid_shape("shape", shape)
     generator = as_generator("rng", rng)
-    if int(count) != count or count < 0:
-        raise ValueError(f"`count` must be a non-negative integer, got {count!r}")
+    count = check_count("count", count, minimum=0)
     strength = check_range("strength", strength, 0.0, 1.0)
     width = check_positive("width", width)
     y, x = np.mgrid[0:rows, 0:cols].astype(float)

@@ -15,7 +15,13 @@ from typing import Any
 import numpy as np
 from scipy import ndimage
 
-from taxel._validation import as_finite_array, check_finite, check_positive, check_range
+from taxel._validation import (
+    as_finite_array,
+    check_count,
+    check_finite,
+    check_positive,
+    check_range,
+)
 from taxel.transducers._common import as_generator
 
 __all__ = [
@@ -29,6 +35,15 @@ __all__ = [
     "neighbour_crosstalk",
     "quantize",
 ]
+
+
+def _as_shape(shape: Any) -> tuple[int, ...]:
+    """An array shape of whole numbers >= 1 (any number of axes), or raise naming `shape`."""
+    try:
+        sizes = tuple(shape)
+    except TypeError:
+        raise ValueError(f"`shape` must be a sequence of sizes, got {shape!r}") from None
+    return tuple(check_count("shape", size) for size in sizes)
 
 
 def add_noise(
@@ -211,7 +226,7 @@ def draw_gain_offset(
     >>> round(float(np.log(spread.gain).std()), 2), round(float(spread.offset.std()), 2)
     (0.05, 0.01)
     """
-    shape = tuple(int(n) for n in shape)
+    shape = _as_shape(shape)
     gain_spread = check_positive("gain_spread", gain_spread, allow_zero=True)
     offset_spread = check_positive("offset_spread", offset_spread, allow_zero=True)
     if gain_spread == 0 and offset_spread == 0:
@@ -282,7 +297,7 @@ def draw_faults(
     >>> int(faults.dead.sum()), int(faults.stuck.sum()), int(faults.saturated.sum())
     (3, 2, 1)
     """
-    shape = tuple(int(n) for n in shape)
+    shape = _as_shape(shape)
     fractions = [
         check_range(name, value, 0.0, 1.0)
         for name, value in (("dead", dead), ("stuck", stuck), ("saturated", saturated))
