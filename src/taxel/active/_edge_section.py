@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy import ndimage, stats
+from scipy import ndimage
 
 from taxel._validation import as_finite_array, check_positive
 from taxel.features import detect_edges, fit_circle, fit_line, pitch_pair
@@ -295,6 +295,8 @@ def edge_cross_section(
             f"{covered:.0%} of the fitted line"
         )
     # a trimmed mean along the edge: glass scratches crossing it touch few of the lines
+    from scipy import stats  # (about 0.2 s to import: only the cross-section needs it)
+
     mean = stats.trim_mean(values, _TRIM, axis=0)
     quarter = max(across.size // 8, 2)
     baseline = float(np.median(np.concatenate((mean[:quarter], mean[-quarter:]))))

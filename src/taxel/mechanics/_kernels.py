@@ -17,7 +17,6 @@ from collections.abc import Callable
 from typing import cast
 
 import numpy as np
-from scipy import integrate, special
 
 from taxel.mechanics._boussinesq import (
     point_load_displacement,
@@ -61,6 +60,9 @@ def _hankel_table(
     q_times_difference: Callable[[np.ndarray], np.ndarray], decay_length: float, reach: float
 ) -> tuple[np.ndarray, np.ndarray]:
     """Tabulate delta(r) on [0, reach] given q (T_layer - T_half)(q), decaying over a length."""
+    # scipy's integrate and special take about 0.4 s to import: only layered covers need them
+    from scipy import integrate, special
+
     q_max = 20.0 / decay_length
     # resolve the oscillation of J0(q r) up to r = reach: dq * reach <= 0.2
     n_q = int(np.clip(q_max * reach / 0.2, 400, 40000)) | 1
