@@ -393,6 +393,8 @@ def test_pitch_pair_and_duck_typed_sensor():
         # one taxel beyond the limit (smoothing would hide it), and 64-bit integers
         (np.pad([[5e15]], 4), 1e-3, ValueError, r"within \+-1e\+15 .* magnitude 5e\+15"),
         (np.full((8, 8), 2**60, np.uint64), 1e-3, ValueError, r"magnitude 1.15e\+18"),
+        (np.full((8, 8), -(2**63), np.int64), 1e-3, ValueError, r"magnitude 9.22e\+18"),
+        (np.full((8, 8), 1e16, np.longdouble), 1e-3, ValueError, r"magnitude 1e\+16"),
     ],
 )
 def test_bad_input(image, pitch, error, match):

@@ -209,10 +209,10 @@ def _as_image(image: Any) -> np.ndarray:
 
 def _check_size(array: np.ndarray) -> None:
     """Raise when a value of `array` lies beyond +-`_LARGEST_VALUE` (or is inf)."""
-    if array.dtype.kind == "f":
+    if array.dtype.kind == "f" and array.dtype.itemsize <= 8:
         low, high = cv2.minMaxLoc(np.ascontiguousarray(array))[:2]  # (one pass, no warning)
-    else:  # 64-bit integers, as Python integers (abs of the lowest int64 overflows)
-        low, high = int(array.min()), int(array.max())
+    else:  # 64-bit integers as Python integers (abs of the lowest int64 overflows), long double
+        low, high = array.min().item(), array.max().item()
     largest = max(-low, high)
     if largest > _LARGEST_VALUE:
         finite = np.isfinite(array)
