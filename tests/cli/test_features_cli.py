@@ -124,19 +124,10 @@ def test_errors_are_one_line(tmp_path, capsys, washer, setup, extra, match):
     assert match in err and len(err.strip().splitlines()) == 1
 
 
-def test_a_failed_figure_keeps_the_old_one(tmp_path, capsys, washer, monkeypatch):
-    from matplotlib.figure import Figure
-
+def test_a_failed_figure_keeps_the_old_one(tmp_path, capsys, washer, full_disk_savefig):
     frame, figure = tmp_path / "frame.npy", tmp_path / "features.png"
     np.save(frame, washer)
     figure.write_bytes(b"old figure")
-
-    def disk_full(self, path, **kwargs):
-        with open(path, "wb") as stream:
-            stream.write(b"\x89PNG cut short")
-        raise OSError(28, "No space left on device")
-
-    monkeypatch.setattr(Figure, "savefig", disk_full)
     args = ["features", str(frame), "--pitch", "2.5e-4", "--figure", str(figure), "--overwrite"]
     assert main(args) == 2
     assert capsys.readouterr().err == (
@@ -144,7 +135,7 @@ def test_a_failed_figure_keeps_the_old_one(tmp_path, capsys, washer, monkeypatch
     )
     assert figure.read_bytes() == b"old figure"
     assert sorted(path.name for path in tmp_path.iterdir()) == ["features.png", "frame.npy"]
-    monkeypatch.undo()
+    full_disk_savefig.undo()
     assert main(args) == 0
     assert cv2.imread(str(figure)).shape[:2] == (600, 600)
 

@@ -31,19 +31,11 @@ def test_import_taxel_stays_light():
     assert out.stdout.strip() == "False"
 
 
-def test_a_failed_write_keeps_the_old_file(tmp_path, monkeypatch):
+def test_a_failed_write_keeps_the_old_file(tmp_path, full_disk_savefig):
     import pytest
-    from matplotlib.figure import Figure
 
     path = tmp_path / "inverse.png"
     path.write_bytes(b"old figure")
-
-    def disk_full(self, target, **kwargs):
-        with open(target, "wb") as stream:
-            stream.write(b"\x89PNG cut short")
-        raise OSError(28, "No space left on device")
-
-    monkeypatch.setattr(Figure, "savefig", disk_full)
     with pytest.raises(OSError, match="No space left") as error:
         plot_reconstruction(path, sensor="resistive16")
     assert error.value.filename == str(path)
