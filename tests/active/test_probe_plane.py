@@ -222,3 +222,48 @@ def test_a_corner_is_located_with_the_smallest_preset_at_its_force_limit():
     # capacitive4x4's finger is limited to exactly the 5 N the probing presses with
     trial = corner_probing_trial("capacitive4x4", seed=0)
     assert trial.corner_error < 0.1e-3
+
+
+class _FailingArm:
+    """A driver whose arm refuses the `fail_at`-th press with its own error (not ValueError)."""
+
+    def __init__(self, finger, fail_at):
+        self.finger, self.fail_at, self.presses, self.pressed = finger, fail_at, 0, False
+        self.sensor = finger.sensor
+
+    @property
+    def pose(self):
+        return self.finger.pose
+
+    def move_to(self, pose):
+        self.finger.move_to(pose)
+
+    def press(self, *, normal_force=None, depth=None):
+        self.presses += 1
+        self.pressed = True  # the arm has started pressing when its limit trips
+        if self.presses == self.fail_at:
+            raise RuntimeError("force beyond the arm's limit")
+        return self.finger.press(normal_force=normal_force, depth=depth)
+
+    def slide(self, path, *, speed, normal_force):
+        return self.finger.slide(path, speed=speed, normal_force=normal_force)
+
+    def retract(self):
+        self.pressed = False
+        self.finger.retract()
+
+
+def test_a_driver_error_passes_unchanged_after_the_retract(sensor, calibration):
+    # a driver's own error (not a ValueError) must not leave the arm pressed on the object
+    box = Box("box", size=(0.1, 0.1, 0.04))
+    poses = [make_pose(DOWN, [x, y, 0.06]) for x, y in ((0, 0), (0.02, 0), (0, 0.02))]
+    arm = _FailingArm(SimulatedFinger(sensor, [box], poses[0]), fail_at=2)
+    with pytest.raises(RuntimeError, match="force beyond the arm's limit"):
+        probe_plane(arm, poses, calibration=calibration)
+    assert arm.presses == 2 and not arm.pressed
+    corner_box = Box("box", size=(0.1, 0.08, 0.06))
+    guess = box_corner_frame(corner_box, 0)
+    arm = _FailingArm(SimulatedFinger(sensor, [corner_box], make_pose(DOWN, [0, 0, 0.1])), 4)
+    with pytest.raises(RuntimeError, match="force beyond the arm's limit"):
+        locate_corner(arm, guess, calibration=calibration)
+    assert arm.presses == 4 and not arm.pressed

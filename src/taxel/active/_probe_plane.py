@@ -284,7 +284,12 @@ def press_and_locate(
     label: str,
     model: TactileSensor | None = None,
 ) -> tuple[ProbeReading, ContactPoint]:
-    """Move, press, read the contact point and retract; on an error retract and re-raise."""
+    """Move, press, read the contact point and retract, whatever goes wrong.
+
+    A `ValueError` (no surface, a force beyond the finger's range, a frame without a
+    contact point) comes back naming the probe and its position; any other error of a
+    driver (its own limits, a lost connection) passes unchanged, after the retract too.
+    """
     try:
         probe.move_to(pose)
         reading = probe.press(normal_force=normal_force)
@@ -292,10 +297,10 @@ def press_and_locate(
             reading.frame.raw, reading.normal_force, model or probe.sensor, calibration
         )
     except ValueError as error:
-        probe.retract()
         position = ", ".join(f"{v * 1e3:.1f}" for v in pose[:3, 3])
         raise ValueError(f"{label} at ({position}) mm: {error}") from None
-    probe.retract()
+    finally:
+        probe.retract()
     return reading, contact
 
 
