@@ -28,11 +28,11 @@ def table():
     return build_edge_radius_table([2e-3, 4e-3, 8e-3], orientations=2, rng=0)
 
 
-def _ridge(angle_deg, sigma=2.0, size=64):
+def _ridge(angle_deg, sigma=2.0, size=64, offset=0.0):
     rows, cols = np.mgrid[:size, :size].astype(float)
     centre = (size - 1) / 2
     angle = math.radians(angle_deg)
-    distance = -(cols - centre) * math.sin(angle) + (rows - centre) * math.cos(angle)
+    distance = -(cols - centre) * math.sin(angle) + (rows - centre) * math.cos(angle) - offset
     return 20 + 80 * np.exp(-(distance**2) / (2 * sigma**2))
 
 
@@ -46,6 +46,15 @@ def test_cross_section_of_a_tilted_ridge():
     # FWHM of a Gaussian of sigma 2 taxels: 4.71 taxels (bilinear sampling adds a little)
     assert section.descriptors["width_50"] / 0.25e-3 == pytest.approx(4.71, abs=0.15)
     assert section.descriptors["peak"] == pytest.approx(80.0, abs=2.5)  # sampled off the crest
+
+
+def test_an_edge_too_near_the_border_is_refused_saying_so():
+    # 32 mm square, the edge 12 mm off its centre: 4 mm from the border, where the 7 mm
+    # either side of it that the cross-section reads run off the sensor
+    ridge = _ridge(0.0, size=128, offset=48.0)
+    with pytest.raises(ValueError, match=r"edge 12.0 mm from the sensor's centre, too near"):
+        edge_cross_section(ridge, 0.25e-3, normal_force=12.0)
+    assert edge_cross_section(_ridge(0.0, size=128, offset=24.0), 0.25e-3, normal_force=12.0)
 
 
 def test_no_edge_in_the_image_is_refused():

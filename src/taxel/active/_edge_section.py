@@ -281,7 +281,13 @@ def edge_cross_section(
         offset = float((offset + intercept) * old_normal @ normal)
     values, along = _sample(array, pitch, angle, offset, across)
     chord = _chord(angle, offset, cols * pitch[1] / 2, rows * pitch[0] / 2)
-    if values.shape[0] < 5 or chord < 0.5 * min(rows * pitch[0], cols * pitch[1]):
+    if values.shape[0] < 5 and chord >= 0.5 * min(rows * pitch[0], cols * pitch[1]):
+        raise ValueError(
+            f"`image` shows its edge {abs(offset) * 1e3:.1f} mm from the sensor's centre, too "
+            f"near the border: the cross-section is read {_HALF_SPAN * 1e3:g} mm either side "
+            "of the edge, along 5 lines or more"
+        )
+    if chord < 0.5 * min(rows * pitch[0], cols * pitch[1]):
         raise ValueError(
             "`image` shows no straight edge across the sensor: the fitted line crosses "
             f"{chord * 1e3:.1f} mm of the active area"
