@@ -367,3 +367,15 @@ def test_oversampling_is_refused_beyond_what_the_model_takes(frame_file, tmp_pat
     argv = ["reconstruct", str(frame_file), "--sensor", "resistive16", "--out", out]
     assert main([*argv, "--oversampling", "2"]) == 0
     assert np.load(out).shape == (32, 32)
+
+
+def test_the_help_lists_every_sensor_the_reconstruction_inverts(capsys):
+    from taxel.cli._reconstruct import INVERTIBLE_PRESETS
+    from taxel.reconstruction import FORWARD_MODEL_PRESETS
+
+    assert INVERTIBLE_PRESETS == FORWARD_MODEL_PRESETS
+    with pytest.raises(SystemExit):
+        main(["reconstruct", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "the frame's sensor: " + ", ".join(FORWARD_MODEL_PRESETS) in text
+    assert "in the readings' unit (Pa for calibrated readings)" in text

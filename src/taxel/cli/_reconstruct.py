@@ -16,6 +16,15 @@ from taxel.cli._files import reading, writing
 __all__ = ["register"]
 
 _RULES = ("gcv", "lcurve", "discrepancy")
+# the presets `taxel.reconstruction.forward_model_preset` builds (a test keeps them equal)
+INVERTIBLE_PRESETS = (
+    "vhdta128",
+    "harmon10x20",
+    "resistive16",
+    "capacitive4x4",
+    "piezo8x8",
+    "reflective8x8",
+)
 LARGEST_PRESSURE = 1e12  # [Pa]
 
 
@@ -206,9 +215,20 @@ def register(commands: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "frame", metavar="FRAME.npy", help="calibrated readings (or raw codes with --calibration)"
     )
-    parser.add_argument("--sensor", required=True, metavar="PRESET", help="vhdta128, resistive16")
     parser.add_argument(
-        "--method", default="tikhonov", choices=("tikhonov", "tsvd", "nonneg", "tv", "support")
+        "--sensor",
+        required=True,
+        metavar="PRESET",
+        # (taxel.reconstruction.FORWARD_MODEL_PRESETS, not imported to build the parser)
+        help="the frame's sensor: " + ", ".join(INVERTIBLE_PRESETS),
+    )
+    parser.add_argument(
+        "--method",
+        default="tikhonov",
+        choices=("tikhonov", "tsvd", "nonneg", "tv", "support"),
+        help="tikhonov (default), tsvd (truncated SVD), nonneg (pressure >= 0), tv (total "
+        "variation, for sharp-edged contacts), support (force and centroid of compact "
+        "contacts: non-negative fit on the cells found pressed)",
     )
     parser.add_argument(
         "--order",
@@ -225,11 +245,19 @@ def register(commands: argparse._SubParsersAction) -> None:
         help="parameter rule, or lambda >= 0 (mu [Pa] for tv); default discrepancy, with "
         "the noise estimated from the frame unless --noise-level is given",
     )
-    parser.add_argument("--noise-level", type=positive, default=None, help="reading noise std")
+    parser.add_argument(
+        "--noise-level",
+        type=positive,
+        default=None,
+        metavar="SIGMA",
+        help="noise std of one reading, in the readings' unit (Pa for calibrated readings); "
+        "estimated from the frame if omitted",
+    )
     parser.add_argument(
         "--oversampling",
         type=integer_in(1, 8),  # taxel.reconstruction's ForwardModelSpec takes 1..8
         default=1,
+        metavar="K",
         help="load cells per taxel along each axis (1-8)",
     )
     parser.add_argument("--out", required=True, metavar="PRESSURE.npy", help="output map")
