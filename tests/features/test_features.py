@@ -151,6 +151,29 @@ def test_plate_hole_found_by_gap_test_only():
     assert not report.diameter_test  # the seed's test assumes a round object
 
 
+def _hole_in_falling_face(wall):
+    """A 64 x 64 face falling from 1 to 0.2 toward its lower border, a hole of radius 6 taxels
+    `wall` taxels from that border (pressure map, 1 mm pitch, blurred and noisy)."""
+    y, x = np.mgrid[:64, :64].astype(float)
+    face = np.clip(1.0 - 0.8 * (y - 24.0) / 39.5, 0.2, 1.0)
+    field = np.where(np.hypot(x - 30.0, y - (57.5 - wall)) > 6.0, face, 0.0)
+    noise = np.random.default_rng(1).normal(0.0, 0.01, field.shape)
+    return ndimage.gaussian_filter(field, 1.0, mode="nearest") + noise
+
+
+def test_hole_near_the_border_of_a_falling_face():
+    # the face presses 0.2-0.4 beside the border, under half of the wall's strong side: the
+    # hole is read at the half level of the wall's trend, not grown toward the border
+    report = detect_holes(_hole_in_falling_face(4.0), 1e-3)
+    assert report.count == 1
+    assert report.items[0].radius_m == pytest.approx(6e-3, rel=0.15)
+    assert report.items[0].center_m[1] == pytest.approx((57.5 - 4.0 - 31.5) * 1e-3, abs=1e-3)
+
+
+def test_gap_cut_by_the_border_of_a_falling_face_is_no_hole():
+    assert not detect_holes(_hole_in_falling_face(0.0), 1e-3).present
+
+
 @pytest.mark.parametrize(
     ("pattern", "parameters"),
     [(cone, {}), (sphere, {}), (flat_punch, {}), (band, {}), (arc, {}), (corner, {})],

@@ -179,6 +179,53 @@ def _moments_of_old(
     return binary_moments(region, r0 - wide_r0, c0 - wide_c0), wide_r0, wide_c0
 
 
+def _clearance(box: Sequence[int], r0: int, c0: int, shape: tuple[int, int]) -> int:
+    """Taxels between a region and the array's border (0 if it touches it).
+
+    `box` is the region's (left, top, width, height) in the window whose corner is at
+    row `r0`, column `c0` of the array.
+    """
+    left, top, width, height = box
+    rows, cols = shape
+    return min(c0 + left, r0 + top, cols - c0 - left - width, rows - r0 - top - height)
+
+
+def _half_levels(window: np.ndarray, wall: np.ndarray, baseline: float, half: float) -> np.ndarray:
+    """The half level at each taxel of a window, following the trend of the wall around it.
+
+    A blurred step crosses half of its *own* height at the true wall. When the contact
+    around a gap falls from one side to the other (a gently convex plate, or a face
+    pressing less toward the array's edge, beyond which the cover bears no load), half the
+    level of the whole wall lies too high on the weak side, and the gap seems to reach
+    toward it. So the half level `half` (of the whole wall) is scaled by the plane fitted
+    through the wall (least squares on the `wall` taxels, above `baseline`) over the wall's
+    mean: a plane follows the slow fall-off of the face, not the texture or noise of the
+    wall. Returns the levels as a (rows, 1) + (1, cols) broadcast sum.
+    """
+    mask = wall.view(np.uint8)
+    moments = cv2.moments(mask, binaryImage=True)
+    raised = cv2.moments(np.multiply(window - np.float32(baseline), mask, dtype=np.float32))
+    count, total = moments["m00"], raised["m00"]
+    centre_c, centre_r = moments["m10"] / count, moments["m01"] / count
+    # the plane's slopes from the normal equations, about the wall's centroid
+    along_c = raised["m10"] - centre_c * total
+    along_r = raised["m01"] - centre_r * total
+    xx, xy, yy = moments["mu20"], moments["mu11"], moments["mu02"]
+    det = xx * yy - xy * xy
+    slope_c = (yy * along_c - xy * along_r) / det if det > 0 else 0.0
+    slope_r = (xx * along_r - xy * along_c) / det if det > 0 else 0.0
+    # half level = baseline + (half - baseline) * plane / mean, mean = total / count
+    factor = (half - baseline) * count / max(total, 1e-30)
+    rows, cols = window.shape
+    by_col = (np.arange(cols, dtype=np.float32) - np.float32(centre_c)) * np.float32(
+        factor * slope_c
+    )
+    by_row = (np.arange(rows, dtype=np.float32) - np.float32(centre_r)) * np.float32(
+        factor * slope_r
+    ) + np.float32(half)
+    return by_row[:, None] + by_col[None, :]
+
+
 def _measure(
     prepared: Prepared, contour: np.ndarray, level: float
 ) -> tuple[Hole | Slot | None, tuple[slice, slice], np.ndarray, float] | None:
@@ -215,8 +262,18 @@ def _measure(
     half = prepared.baseline + _DIP * (surround - prepared.baseline)
     if bottom > half:
         return None  # a dimple of the pressure, not a gap in the contact
-    region = ((away <= 3.0) & (window < half)).view(np.uint8)
+    near = away <= 3.0
+    region = (near & (window < half)).view(np.uint8)
     box = cv2.boundingRect(region)
+    row_pitch, col_pitch = prepared.pitch
+    pitch = math.sqrt(row_pitch * col_pitch)
+    edge = max(_BORDER_TAXELS, prepared.cover_depth / pitch)
+    if _clearance(box, r0, c0, shape) < edge:
+        # near the array's edge, where the face may press less: read the gap at the half
+        # level of its wall's trend (see `_half_levels`)
+        levels = _half_levels(window, wall, prepared.baseline, half)
+        region = (near & (window < levels)).view(np.uint8)
+        box = cv2.boundingRect(region)
     # (the filled outline's bounding box is the outline's)
     if _reaches_border(box, r0, c0, shape) and not _reaches_border(
         (left - c0, top - r0, width, height), r0, c0, shape
@@ -230,8 +287,6 @@ def _measure(
     where = (slice(r0, r1), slice(c0, c1))
     if area < MIN_GAP_AREA:
         return None, where, region, evenness
-    row_pitch, col_pitch = prepared.pitch
-    pitch = math.sqrt(row_pitch * col_pitch)
     mean_r, mean_c = moments["m01"] / area + origin_r, moments["m10"] / area + origin_c
     var_y = (moments["mu02"] / area + 1 / 12) * row_pitch**2
     var_x = (moments["mu20"] / area + 1 / 12) * col_pitch**2
@@ -247,10 +302,7 @@ def _measure(
     gap_area = area * row_pitch * col_pitch
     inradius = cv2.minMaxLoc(cv2.distanceTransform(region, cv2.DIST_L2, 3))[1]
     border = _reaches_border(box, r0, c0, shape)
-    edge = max(_BORDER_TAXELS, prepared.cover_depth / pitch)
-    left, top, width, height = box
-    clearance = min(c0 + left, r0 + top, cols - c0 - left - width, rows - r0 - top - height)
-    if not border and clearance >= edge:
+    if not border and _clearance(box, r0, c0, shape) >= edge:
         round_enough = math.sqrt(minor / major) >= _HOLE_AXIS_RATIO
         filled = area / (math.pi * (inradius + 0.5) ** 2) <= _HOLE_FILL
         if round_enough and filled and inradius >= 1.0:
