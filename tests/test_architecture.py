@@ -65,3 +65,13 @@ def test_import_taxel_stays_light():
     code = "import sys, taxel, taxel.mechanics, taxel.sensor; print('matplotlib' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_modules_stay_small():
+    # docs/architecture.md: about 450 lines at most; a module past 500 is split
+    lengths = {
+        str(path.relative_to(PACKAGE)): len(path.read_text().splitlines())
+        for path in PACKAGE.rglob("*.py")
+    }
+    assert max(lengths.values()) > 100  # the walk found the package's modules
+    assert {name: n for name, n in lengths.items() if n > 500} == {}
