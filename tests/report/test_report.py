@@ -28,7 +28,9 @@ def test_every_experiment_runs_and_reports(demo):
     assert [item["key"] for item in results["experiments"]] == [
         experiment.key for experiment in demo.experiments
     ]
+    assert results["seed"] == DemoContext().seed  # the page and the file name the run's seed
     html = demo.report_path.read_text()
+    assert f"random\nseed {results['seed']} (noise" in html
     assert html.count("<img") == sum(len(e.figures) for e in demo.experiments)
     assert "http://" not in html and "https://" not in html  # self-contained
 

@@ -214,7 +214,7 @@ def edge_radius(context: DemoContext, *, radius: float = 3.2e-3) -> Experiment:
                 abs(first.nearest_radius - nearest) < 1e-9,
             ),
             Verdict(
-                "interpolated radii within 0.25 mm (the issue's target)",
+                "interpolated radii within 0.25 mm (taxel's target)",
                 f"worst {max(errors) * 1e3:.3f} mm",
                 "-",
                 max(errors) <= 0.25e-3,

@@ -73,7 +73,9 @@ def _experiment(experiment: Experiment) -> str:
     return "\n".join(parts)
 
 
-def render_html(experiments: Sequence[Experiment], *, quick: bool, seconds: float) -> str:
+def render_html(
+    experiments: Sequence[Experiment], *, quick: bool, seconds: float, seed: int
+) -> str:
     """The whole report page."""
     passed = sum(experiment.passed for experiment in experiments)
     summary_rows = "".join(
@@ -89,7 +91,9 @@ def render_html(experiments: Sequence[Experiment], *, quick: bool, seconds: floa
 <body>
 <h1>taxel: the seeds' experiments, end to end</h1>
 <p class="meta">taxel {html.escape(taxel.__version__)}, {mode}, {seconds:.0f} s on
-{html.escape(platform.machine())}, Python {html.escape(platform.python_version())}.
+{html.escape(platform.machine())}, Python {html.escape(platform.python_version())}, random
+seed {seed} (noise, positions and presses are drawn from it: another seed moves the numbers
+a little).
 Every experiment runs through the real pipeline (contact mechanics, sensor simulation,
 calibration, reconstruction, features, active procedures); every verdict is computed from
 its numbers.</p>

@@ -144,13 +144,13 @@ def slot_corner_normal(context: DemoContext) -> Experiment:
             Verdict(
                 "surface normal within 1 degree from 5 probes",
                 f"worst {normal_errors.max():.3f} deg",
-                "<= 1 deg (issue)",
+                "<= 1 deg (taxel's target)",
                 bool(normal_errors.max() <= 1.0),
             ),
             Verdict(
                 "box corner within 1 mm by probing",
                 f"worst {corner_errors.max():.3f} mm",
-                "<= 1 mm (issue)",
+                "<= 1 mm (taxel's target)",
                 bool(corner_errors.max() <= 1.0),
             ),
         ),

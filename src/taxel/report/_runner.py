@@ -132,9 +132,10 @@ def run_demo(
         bar.close()
     seconds = time.perf_counter() - started
     report = folder / "report.html"
-    html = render_html(results, quick=quick, seconds=seconds)
+    html = render_html(results, quick=quick, seconds=seconds, seed=context.seed)
     numbers = {
         "quick": quick,
+        "seed": context.seed,
         "seconds": round(seconds, 2),
         "experiments": [experiment.to_dict() for experiment in results],
     }
