@@ -13,12 +13,19 @@ PITCH = 2.5e-4
 
 
 def test_figures_draw_and_save(tmp_path):
+    drawn = {"band": "fitted line", "arc": "fitted circle", "plate_with_slot": "slot"}
     for pattern in (band, arc, plate_with_slot):
         image = render(pattern, (64, 64), rng=0, noise=0.01)
         figure = plot_features(image, extract(image, PITCH), PITCH)
         path = tmp_path / f"{pattern.__name__}.png"
         figure.savefig(path)
         assert path.stat().st_size > 1000
+        # the legend names what is drawn; the axes give the pitch
+        axes = figure.axes[0]
+        labels = [text.get_text() for text in axes.get_legend().get_texts()]
+        assert labels[0] == "edges" and labels[-1] == "centroid"
+        assert drawn[pattern.__name__] in labels
+        assert axes.get_xlabel() == "column [taxels of 0.25 mm]"
 
 
 def test_importing_taxel_does_not_import_matplotlib():

@@ -65,7 +65,9 @@ def plot_features(image: Any, features: Any, sensor_or_pitch: Any, *, ax: Any = 
         figure = ax.figure
     ax.imshow(array, cmap="gray", interpolation="nearest")
     edges = detect_edges(array, (row_pitch, col_pitch))
-    ax.plot(edges.cols, edges.rows, "s", color="tab:orange", markersize=1.5, alpha=0.8)
+    ax.plot(
+        edges.cols, edges.rows, "s", color="tab:orange", markersize=1.5, alpha=0.8, label="edges"
+    )
     shape = features.shape
     if shape.contact_type == "line" and shape.line is not None:
         line = shape.line
@@ -73,16 +75,20 @@ def plot_features(image: Any, features: Any, sensor_or_pitch: Any, *, ax: Any = 
         foot = line.offset_m * np.array([-direction[1], direction[0]])
         reach = math.hypot(rows * row_pitch, cols * col_pitch)
         ends = [to_index(*(foot + t * direction)) for t in (-reach, reach)]
-        ax.plot([e[0] for e in ends], [e[1] for e in ends], "-", color="tab:cyan", lw=1.5)
+        ends_x, ends_y = [e[0] for e in ends], [e[1] for e in ends]
+        ax.plot(ends_x, ends_y, "-", color="tab:cyan", lw=1.5, label="fitted line")
     elif shape.contact_type == "arc" and shape.circle is not None:
         centre = to_index(*shape.circle.center_m)
         radius = shape.circle.radius_m / math.sqrt(row_pitch * col_pitch)
-        ax.add_patch(Circle(centre, radius, fill=False, color="tab:cyan", lw=1.5))
-    for hole in features.holes.items:
+        ax.add_patch(
+            Circle(centre, radius, fill=False, color="tab:cyan", lw=1.5, label="fitted circle")
+        )
+    for number, hole in enumerate(features.holes.items):
         radius = hole.radius_m / math.sqrt(row_pitch * col_pitch)
         centre = (hole.center_index[1], hole.center_index[0])
-        ax.add_patch(Circle(centre, radius, fill=False, color="tab:red", lw=1.5))
-    for slot in features.slots.items:
+        label = "hole" if number == 0 else None
+        ax.add_patch(Circle(centre, radius, fill=False, color="tab:red", lw=1.5, label=label))
+    for number, slot in enumerate(features.slots.items):
         direction = np.array([math.cos(slot.angle_rad), math.sin(slot.angle_rad)])
         normal = np.array([-direction[1], direction[0]])
         middle = np.array(slot.center_m)
@@ -91,17 +97,20 @@ def plot_features(image: Any, features: Any, sensor_or_pitch: Any, *, ax: Any = 
             for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1), (-1, -1))
         ]
         points = [to_index(*c) for c in corners]
-        ax.plot([p[0] for p in points], [p[1] for p in points], "-", color="tab:green", lw=1.5)
+        label = "slot" if number == 0 else None
+        xs, ys = [p[0] for p in points], [p[1] for p in points]
+        ax.plot(xs, ys, "-", color="tab:green", lw=1.5, label=label)
     if features.contact.present:
         row, col = features.contact.centroid_index
-        ax.plot([col], [row], "+", color="tab:blue", markersize=10, mew=2)
+        ax.plot([col], [row], "+", color="tab:blue", markersize=10, mew=2, label="centroid")
     ax.set_xlim(-0.5, cols - 0.5)
     ax.set_ylim(rows - 0.5, -0.5)
     ax.set_title(
         f"{shape.contact_type}, {features.holes.count} hole(s), {features.slots.count} slot(s)"
     )
-    ax.set_xlabel("column")
-    ax.set_ylabel("row")
+    ax.set_xlabel(f"column [taxels of {col_pitch * 1e3:.3g} mm]")
+    ax.set_ylabel(f"row [taxels of {row_pitch * 1e3:.3g} mm]")
+    ax.legend(loc="lower right", fontsize="small", framealpha=0.8)
     return figure
 
 
