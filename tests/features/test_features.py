@@ -361,6 +361,25 @@ def test_known_noise_tells_a_fine_texture_from_noise():
     assert not extract(1000 + rng.normal(0, 4, (16, 16)), 2e-3, noise=4.0).contact.present
 
 
+def test_known_noise_finds_a_press_on_a_four_by_four_array():
+    # a ball pressed on capacitive4x4 (5 mm pitch, noise about 30 counts): the 2 x 2
+    # interior, where the image's own noise is estimated, is all contact, so the estimate
+    # (about 4000 counts) is the contact itself and buries it; told the noise, it is there
+    frame = np.array(
+        [
+            [3285, 3514, 3482, 3186],
+            [3471, 24865, 24801, 3484],
+            [3485, 24866, 24805, 3449],
+            [3212, 3432, 3528, 3210],
+        ]
+    )
+    assert not find_contact(frame, 5e-3).present
+    contact = find_contact(frame, 5e-3, noise=30.0)
+    assert contact.present and len(contact.regions) == 1
+    assert contact.area_m2 == pytest.approx(4 * 25e-6)
+    assert contact.centroid_index == pytest.approx((1.5, 1.5), abs=0.01)
+
+
 def test_saturated_image():
     saturated = np.full((32, 32), 255, np.uint8)
     assert not extract(saturated, 1e-3).contact.present  # no contrast, no known baseline

@@ -280,6 +280,7 @@ def find_contact(
     calibrated: bool = False,
     smoothing: float = 1.0,
     baseline: float | None = None,
+    noise: float | None = None,
 ) -> Contact:
     """Find the contact regions of a tactile image and measure each.
 
@@ -295,6 +296,10 @@ def find_contact(
         Gaussian smoothing sigma [taxels].
     baseline : float, optional
         No-contact level [image units]; estimated when omitted (see `prepare`).
+    noise : float, optional
+        Noise standard deviation of one taxel [image units], when the sensor's is known;
+        estimated from the image when omitted (see `prepare`), which needs an array large
+        enough that the contact leaves most of it flat.
 
     Returns
     -------
@@ -317,6 +322,11 @@ def find_contact(
     [3.0, -2.0]
     """
     prepared = prepare(
-        image, sensor_or_pitch, calibrated=calibrated, smoothing=smoothing, baseline=baseline
+        image,
+        sensor_or_pitch,
+        calibrated=calibrated,
+        smoothing=smoothing,
+        baseline=baseline,
+        noise=noise,
     )
     return contact_regions(prepared)
