@@ -67,6 +67,42 @@ def test_racquet_ball_reproduces_the_seed(calibration):
     json.dumps(result.to_dict())
 
 
+@pytest.fixture(scope="module")
+def small_calibration():
+    return calibrate_pad("capacitive4x4", forces=(0.5, 2.0, 4.0))
+
+
+def test_a_four_by_four_array_sees_its_presses_and_tells_soft_from_rigid(small_calibration):
+    # capacitive4x4's finger presses at most 5 N; its image is 4 x 4 taxels, whose 2 x 2
+    # interior a press fills: the contact threshold takes the sensor's measured noise
+    options = {"sensor": "capacitive4x4", "forces": (2.0, 4.0), "calibration": small_calibration}
+    soft = measure_deformation("racquet ball", rng=0, **options)
+    assert soft.deformable
+    assert soft.area_pixels == (4, 4, 4)  # the central 2 x 2 taxels, 100 mm^2
+    # deformation grows as F^(2/3): the seed's 4.8 mm from 12 to 39 N scales to 0.72 mm
+    # from 2 to 4 N, and the finger finds 0.69 mm (2.9 kN/m, under vhdta128's 5.6 kN/m
+    # at the larger forces, as a Hertzian contact stiffens with load)
+    assert soft.height_change == pytest.approx(0.69e-3, abs=0.03e-3)
+    assert soft.stiffness == pytest.approx(2.0 / 0.69e-3, rel=0.05)
+    assert soft.unloaded_height == pytest.approx(57.0e-3, abs=0.2e-3)
+    rigid = measure_deformation("steel ball", rng=0, **options)
+    assert not rigid.deformable
+    assert abs(rigid.height_change) < 1e-6
+    assert rigid.deformability < 0.01
+    assert rigid.stiffness > 1000 * soft.stiffness
+    # the same frames without noise give the same verdicts
+    assert measure_deformation("racquet ball", rng=None, **options).deformable
+
+
+def test_the_noise_is_the_sensor_s_on_small_arrays_only():
+    from taxel.active._imaging import frame_noise
+
+    # capacitive4x4's readout noise: 5e-4 of its span, about 30 of its 16-bit counts
+    assert frame_noise(make_sensor("capacitive4x4")) == pytest.approx(29.7, abs=0.1)
+    for name in ("resistive16", "piezo8x8", "reflective8x8", "harmon10x20", "vhdta128"):
+        assert frame_noise(make_sensor(name)) is None  # their images show their own
+
+
 def test_acrylic_sphere_is_rigid(calibration):
     result = measure_deformation("acrylic sphere", calibration=calibration, rng=2)
     assert not result.deformable

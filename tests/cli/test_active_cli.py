@@ -101,6 +101,20 @@ def test_stiffness_tells_the_racquet_ball_from_the_acrylic_sphere(capsys, small_
     assert "verdict: rigid" in capsys.readouterr().out
 
 
+def test_stiffness_on_the_four_by_four_array(capsys, tmp_path):
+    # its 2 x 2 interior is all contact: the image alone took its press for noise
+    pad = str(tmp_path / "pad4.json")
+    args = ["active", "stiffness", "--sensor", "capacitive4x4", "--forces", "2", "4"]
+    assert main([*args, "--calibration", pad]) == 0
+    captured = capsys.readouterr()
+    assert "verdict: deformable" in captured.out and "4 -> 4 -> 4 pixels" in captured.out
+    assert captured.err.startswith("building the pad calibration")
+    assert main([*args, "--object", "steel ball", "--calibration", pad, "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["deformable"] is False and result["area_pixels"] == [4, 4, 4]
+    assert abs(result["height_change_m"]) < 1e-6
+
+
 def test_recognize_ranks_the_candidates(capsys, small_files):
     library = str(small_files / "l.json")
     assert (

@@ -20,7 +20,7 @@ import numpy as np
 from taxel._validation import check_finite, check_instance, check_positive
 from taxel.active._deformable_objects import make_deformation_object, top_height
 from taxel.active._finger import SimulatedFinger
-from taxel.active._imaging import imaging_sensor
+from taxel.active._imaging import frame_noise, imaging_sensor
 from taxel.active._pad_calibration import PadCalibration, calibrate_pad, core_area
 from taxel.active._probe import Probe, ProbeReading
 from taxel.active._procedure import ProcedureStep, step_from_reading
@@ -179,16 +179,16 @@ class Deformation:
         self.table_height = check_finite("table_height", table_height)
 
     def _press(
-        self, probe: Probe, force: float, *, touch: bool
+        self, probe: Probe, force: float, *, touch: bool, noise: float | None
     ) -> tuple[ProbeReading, float, int, float, float]:
         reading = probe.press(normal_force=force)
         sensor = probe.sensor
-        contact = find_contact(reading.frame.raw, sensor)
+        contact = find_contact(reading.frame.raw, sensor, noise=noise)
         if not contact.present:
             if touch:  # a broad face at a light touch: too faint to see, too light to matter
                 return reading, 0.0, 0, 0.0, 0.0
             raise ValueError(f"the press at {force:g} N shows no contact in the tactile image")
-        prepared = prepare(reading.frame.raw, sensor)
+        prepared = prepare(reading.frame.raw, sensor, noise=noise)
         excess = np.clip(prepared.smooth - prepared.baseline, 0.0, None)
         mask = prepared.mask.astype(bool)
         intensity = float(excess[mask].mean()) if mask.any() else 0.0
@@ -206,12 +206,15 @@ class Deformation:
                 f"carries {sensor.name!r}"
             )
         forces = [float(f) for f in self.calibration.forces[-3:]]
+        noise = frame_noise(sensor)  # None: the images show their own noise
         steps: list[ProcedureStep] = []
         travels, pads, heights, areas, pixels, intensities = [], [], [], [], [], []
         try:
             for force, action in zip(forces, ("touch", "light press", "firm press"), strict=True):
                 touch = action == "touch"
-                reading, area, count, intensity, core = self._press(probe, force, touch=touch)
+                reading, area, count, intensity, core = self._press(
+                    probe, force, touch=touch, noise=noise
+                )
                 probe.retract()
                 if core <= 0 and not touch:
                     raise ValueError(f"the press at {force:g} N shows no imprint core")
