@@ -1,5 +1,6 @@
 """``taxel active``: the procedures from the command line."""
 
+import io
 import json
 from pathlib import Path
 
@@ -108,7 +109,7 @@ def test_stiffness_on_the_four_by_four_array(capsys, tmp_path):
     assert main([*args, "--calibration", pad]) == 0
     captured = capsys.readouterr()
     assert "verdict: deformable" in captured.out and "4 -> 4 -> 4 pixels" in captured.out
-    assert captured.err.startswith("building the pad calibration")
+    assert captured.err == f"built the pad calibration and saved it to {pad}\n"
     assert main([*args, "--object", "steel ball", "--calibration", pad, "--json"]) == 0
     result = json.loads(capsys.readouterr().out)
     assert result["deformable"] is False and result["area_pixels"] == [4, 4, 4]
@@ -307,3 +308,55 @@ def test_an_unwritable_table_is_found_before_the_build(capsys):
     assert capsys.readouterr().err == (
         "taxel active: error: --table /proc/t.json cannot be written (No such file or directory)\n"
     )
+
+
+def test_a_build_that_fails_leaves_one_line(capsys, tmp_path):
+    # the table's build refuses the sensor: the error alone, no notice of the build before it
+    table = tmp_path / "t.json"
+    args = ["active", "edge-radius", "--radius-mm", "2", "--sensor", "capacitive4x4"]
+    assert main([*args, "--forces", "2", "4", "--table", str(table)]) == 2
+    assert capsys.readouterr().err == (
+        "taxel active: error: `sensor` is too small for an edge cross-section: 4 x 4 taxels "
+        "at 5 x 5 mm leave 0.0 mm clear of the border across the edge, and the section "
+        "needs 14 mm\n"
+    )
+    assert not table.exists()
+
+
+def test_a_procedure_that_fails_after_its_build_leaves_one_line(capsys, tmp_path):
+    # the calibration is built and saved; the 0.5 mm ball then falls between the load
+    # grid's points 5 mm apart: the error is the only line, and the file is kept for reuse
+    pad = tmp_path / "pad4.json"
+    args = ["active", "stiffness", "--sensor", "capacitive4x4", "--forces", "2", "4"]
+    ball = ["--shape", "ball", "--size-mm", "0.5", "--modulus-mpa", "1"]
+    assert main([*args, *ball, "--calibration", str(pad)]) == 2
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert captured.err.count("\n") == 1
+    assert captured.err.startswith("taxel active: error: no object within the finger's reach")
+    assert pad.exists()
+    assert main([*args, "--calibration", str(pad)]) == 0  # loaded: nothing on stderr
+    assert capsys.readouterr().err == ""
+
+
+class _Terminal(io.StringIO):
+    def isatty(self) -> bool:
+        return True
+
+
+def test_a_terminal_is_told_of_the_build_while_it_runs(monkeypatch, tmp_path):
+    terminal = _Terminal()
+    monkeypatch.setattr("sys.stderr", terminal)
+    pad = tmp_path / "pad4.json"
+    args = ["active", "stiffness", "--sensor", "capacitive4x4", "--forces", "2", "4"]
+    ball = ["--shape", "ball", "--size-mm", "0.5", "--modulus-mpa", "1"]
+    assert main([*args, *ball, "--calibration", str(pad)]) == 2
+    # the notice, erased (carriage return, clear to the line's end) before the error
+    notice = "building the pad calibration (this takes a while) ...\r\x1b[K"
+    assert terminal.getvalue().startswith(notice + "taxel active: error: no object within")
+    assert terminal.getvalue().count("\n") == 1
+    terminal.seek(0)
+    terminal.truncate()
+    other = tmp_path / "other.json"
+    assert main([*args, "--calibration", str(other), "--json"]) == 0
+    assert terminal.getvalue() == f"{notice}built the pad calibration and saved it to {other}\n"

@@ -26,7 +26,7 @@ from taxel.cli._arguments import (
     real_in,
     seed,
 )
-from taxel.cli._files import reading
+from taxel.cli._files import building, file_or_build
 from taxel.cli._main import CommandLineError
 
 __all__ = ["finger_limit", "register"]
@@ -36,12 +36,20 @@ _TOUCH_FORCE = 15.0  # taxel.active's DEFAULT_TOUCH_FORCE, of recognition's touc
 _TOUCH = 0.5  # measure_deformation's touch_force [N], the first press of a pad calibration
 
 
-def _emit(arguments: argparse.Namespace, payload: dict[str, Any], lines: list[str]) -> int:
+def _emit(
+    arguments: argparse.Namespace,
+    payload: dict[str, Any],
+    lines: list[str],
+    built: Sequence[str] = (),
+) -> int:
+    """Print the result; then, on stderr, the files the command built (`built`)."""
     if arguments.json:
         json.dump(payload, sys.stdout, indent=2, allow_nan=True, default=float)
         sys.stdout.write("\n")
     else:
         sys.stdout.write("\n".join(lines) + "\n")
+    for note in built:  # only now: an error before this point leaves its one line alone
+        sys.stderr.write(note + "\n")
     return 0
 
 
@@ -114,43 +122,19 @@ def _locate_corner(arguments: argparse.Namespace) -> int:
     return _emit(arguments, trial.to_dict(), lines)
 
 
-def _file_or_build(
-    path: str | None,
-    load: Callable[[str], Any],
-    build: Callable[[str], Any],
-    what: str,
-    option: str,
-) -> Any:
-    """Load `path` when it exists; otherwise build it there (never overwriting a file).
-
-    Where it cannot be written (a missing folder, another suffix) is found before the
-    long build, not after it.
-    """
-    if path is None:
-        return None
-    from pathlib import Path
-
-    from taxel.io import check_new_file
-
-    if Path(path).exists() and not Path(path).is_dir():
-        with reading(option, path):
-            return load(path)
-    check_new_file(path, suffix=".json", name=option)
-    sys.stderr.write(f"building the {what} (this takes a while); saving it to {path}\n")
-    return build(path)
-
-
 def _edge_radius(arguments: argparse.Namespace) -> int:
     from taxel.active import EdgeRadiusTable, build_edge_radius_table, measure_edge_radius
 
     forces = _EDGE_FORCES if arguments.forces is None else tuple(arguments.forces)
     _check_forces("--forces", forces, arguments.sensor)
-    table = _file_or_build(
+    built: list[str] = []
+    table = file_or_build(
         arguments.table,
         EdgeRadiusTable.load,
         lambda path: build_edge_radius_table(sensor=arguments.sensor, forces=forces, path=path),
         "edge-radius table",
         "--table",
+        built,
     )
     if table is not None:
         made = tuple(float(force) for force in table.forces)
@@ -162,7 +146,8 @@ def _edge_radius(arguments: argparse.Namespace) -> int:
             )
         forces = made
     elif arguments.forces is not None:  # the default table is made at the default forces
-        table = build_edge_radius_table(sensor=arguments.sensor, forces=forces)
+        with building("edge-radius table"):
+            table = build_edge_radius_table(sensor=arguments.sensor, forces=forces)
     result = measure_edge_radius(
         arguments.radius_mm * 1e-3,
         table=table,
@@ -181,7 +166,7 @@ def _edge_radius(arguments: argparse.Namespace) -> int:
         f"error: {(result.radius - arguments.radius_mm * 1e-3) * 1e3:+.3f} mm",
         f"match: {result.message}",
     ]
-    return _emit(arguments, result.to_dict(), lines)
+    return _emit(arguments, result.to_dict(), lines, built)
 
 
 def _stiffness(arguments: argparse.Namespace) -> int:
@@ -204,8 +189,14 @@ def _stiffness(arguments: argparse.Namespace) -> int:
             f"exceed the {_TOUCH:g} N touch that finds the object first"
         )
     _check_forces("--forces", arguments.forces, arguments.sensor)
-    calibration = _file_or_build(
-        arguments.calibration, PadCalibration.load, build, "pad calibration", "--calibration"
+    built: list[str] = []
+    calibration = file_or_build(
+        arguments.calibration,
+        PadCalibration.load,
+        build,
+        "pad calibration",
+        "--calibration",
+        built,
     )
     if calibration is not None:
         made = [float(force) for force in calibration.forces[-2:]]
@@ -237,7 +228,7 @@ def _stiffness(arguments: argparse.Namespace) -> int:
         "height: " + " / ".join(f"{h * 1e3:.2f}" for h in result.heights) + " mm",
         "contact area: " + " -> ".join(f"{a:.0f}" for a in result.area_pixels) + " pixels",
     ]
-    return _emit(arguments, result.to_dict(), lines)
+    return _emit(arguments, result.to_dict(), lines, built)
 
 
 def _recognize(arguments: argparse.Namespace) -> int:
@@ -245,12 +236,14 @@ def _recognize(arguments: argparse.Namespace) -> int:
 
     force = _TOUCH_FORCE if arguments.force is None else arguments.force
     _check_forces("--force", [force], arguments.sensor)
-    library = _file_or_build(
+    built: list[str] = []
+    library = file_or_build(
         arguments.library,
         ModelLibrary.load,
         lambda path: build_model_library(sensor=arguments.sensor, normal_force=force, path=path),
         "model library",
         "--library",
+        built,
     )
     if library is not None:
         if arguments.force is not None and library.normal_force != force:
@@ -260,7 +253,8 @@ def _recognize(arguments: argparse.Namespace) -> int:
             )
         force = library.normal_force
     elif arguments.force is not None:  # the default library is made at the default force
-        library = build_model_library(sensor=arguments.sensor, normal_force=force)
+        with building("model library"):
+            library = build_model_library(sensor=arguments.sensor, normal_force=force)
     result = recognize_object(
         arguments.object, library=library, sensor=arguments.sensor, rng=arguments.seed
     )
@@ -271,7 +265,7 @@ def _recognize(arguments: argparse.Namespace) -> int:
     ]
     lines += [f"  {name:12} score {score:.3f}" for name, score, _ in result.candidates]
     lines.append(f"recognized as: {result.name}")
-    return _emit(arguments, result.to_dict(), lines)
+    return _emit(arguments, result.to_dict(), lines, built)
 
 
 def _add(

@@ -1,15 +1,17 @@
-"""The files a command reads and writes: their errors name the flag, not the API's parameter."""
+"""The files a command reads, builds and writes; their errors name the flag, not the parameter."""
 
 from __future__ import annotations
 
 import os
-from collections.abc import Iterator, Mapping
+import sys
+from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
 
 from taxel.cli._main import CommandLineError
 
-__all__ = ["cannot_write", "reading", "writing"]
+__all__ = ["building", "cannot_write", "file_or_build", "reading", "writing"]
 
 
 def cannot_write(error: OSError, flags: Mapping[Path, str]) -> CommandLineError:
@@ -60,3 +62,53 @@ def reading(flag: str, path: str | os.PathLike[str]) -> Iterator[None]:
         if message.startswith((f"{path}:", f"{Path(path)}:")):  # (./x.json reads as x.json)
             raise ValueError(f"{flag} {message}") from None
         raise
+
+
+@contextmanager
+def building(what: str) -> Iterator[None]:
+    """Say on a terminal that the `what` is being built while it is; erase it after.
+
+    A build takes seconds to minutes, so a user at a terminal is told why nothing happens.
+    The line is erased when the build ends, well or not: an error in the build, or in the
+    procedure after it, is then the one line left on stderr, as for any error; a script
+    reading stderr (not a terminal) gets no such line at all.
+    """
+    shown = sys.stderr.isatty()
+    if shown:  # (short, so that it fits on one line of a terminal and erases whole)
+        sys.stderr.write(f"building the {what} (this takes a while) ...")
+        sys.stderr.flush()
+    try:
+        yield
+    finally:
+        if shown:
+            sys.stderr.write("\r\x1b[K")  # back to the line's start, and clear it
+            sys.stderr.flush()
+
+
+def file_or_build(
+    path: str | None,
+    load: Callable[[str], Any],
+    build: Callable[[str], Any],
+    what: str,
+    option: str,
+    built: list[str],
+) -> Any:
+    """Load `path` when it exists; otherwise build it there (never overwriting a file).
+
+    Where it cannot be written (a missing folder, another suffix) is found before the
+    long build, not after it. A file built is noted in `built`, for the command to tell
+    once it has succeeded: told before, with an error after it, an error would leave two
+    lines on stderr.
+    """
+    if path is None:
+        return None
+    from taxel.io import check_new_file
+
+    if Path(path).exists() and not Path(path).is_dir():
+        with reading(option, path):
+            return load(path)
+    check_new_file(path, suffix=".json", name=option)
+    with building(what):
+        made = build(path)
+    built.append(f"built the {what} and saved it to {path}")
+    return made
