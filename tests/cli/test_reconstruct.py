@@ -274,6 +274,31 @@ def test_unreadable_calibrations_are_one_line_errors(tmp_path, capsys):
         assert error.count("\n") == 1 and message in error, (path, error)
 
 
+def test_a_calibration_whose_header_claims_terabytes_is_one_line(tmp_path, capsys):
+    import io
+    import zipfile
+
+    frame = tmp_path / "frame.npy"
+    np.save(frame, np.full((16, 16), 100, np.int64))
+    member = io.BytesIO()
+    header = {"descr": "<f8", "fortran_order": False, "shape": (10**6, 10**6)}
+    np.lib.format.write_array_header_1_0(member, header)
+    member.write(bytes(64))
+    claims = tmp_path / "claims.npz"
+    with zipfile.ZipFile(claims, "w") as archive:
+        archive.writestr("readings.npy", member.getvalue())
+    out = tmp_path / "p.npy"
+    arguments = ["reconstruct", str(frame), "--sensor", "resistive16", "--out", str(out)]
+    # numpy allocated the 8 TB first: a MemoryError and its traceback
+    assert main([*arguments, "--calibration", str(claims)]) == 2
+    assert capsys.readouterr().err == (
+        f"taxel reconstruct: error: --calibration {claims}: not a taxel calibration file "
+        "(truncated or corrupt: its header claims shape (1000000, 1000000) of float64 "
+        "(8000000000000 bytes), but 64 bytes follow)\n"
+    )
+    assert not out.exists()
+
+
 def test_a_batch_of_any_shape_is_reconstructed_frame_by_frame(frame_file, tmp_path, capsys):
     frame = np.load(frame_file)
     batch = tmp_path / "batch.npy"

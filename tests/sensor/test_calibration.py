@@ -217,6 +217,70 @@ def test_save_and_load(tmp_path, sensors):
         Calibration.load(tmp_path / "none.npz")
 
 
+def _claiming_member(path, shape):
+    """An .npz archive whose one array's header claims `shape` of float64 over 64 bytes."""
+    import io
+    import zipfile
+
+    member = io.BytesIO()
+    header = {"descr": "<f8", "fortran_order": False, "shape": shape}
+    np.lib.format.write_array_header_1_0(member, header)
+    member.write(bytes(64))
+    with zipfile.ZipFile(path, "w") as archive:
+        archive.writestr("readings.npy", member.getvalue())
+    return path
+
+
+def test_a_damaged_calibration_file_is_refused_naming_it(tmp_path):
+    # numpy.load believed the headers: 8 TB allocated (a MemoryError) before it found the
+    # data missing, and a text file was offered for unpickling
+    huge = _claiming_member(tmp_path / "huge.npz", (10**6, 10**6))
+    with pytest.raises(
+        ValueError,
+        match=r"huge\.npz: not a taxel calibration file \(truncated or corrupt: its header "
+        r"claims shape \(1000000, 1000000\) of float64 \(8000000000000 bytes\), but 64 bytes "
+        r"follow\)",
+    ):
+        Calibration.load(huge)
+    single = tmp_path / "single.npz"  # one array saved with np.save, under an .npz name
+    with open(single, "wb") as stream:
+        np.save(stream, np.ones(3))
+    text = tmp_path / "text.npz"
+    text.write_text("pressures, readings\n1, 2\n")
+    empty = tmp_path / "empty.npz"
+    empty.write_bytes(b"")
+    for path, problem in [
+        (single, "one array (.npy), not an .npz archive"),
+        (text, "not an .npz archive: a text or image file?"),
+        (empty, "the file is empty"),
+    ]:
+        with pytest.raises(ValueError) as refused:
+            Calibration.load(path)
+        assert str(refused.value) == f"{path}: not a taxel calibration file ({problem})"
+
+
+def test_a_calibration_with_a_corrupt_compressed_array_is_refused(tmp_path, sensors):
+    import zipfile
+
+    sensor = sensors["capacitive4x4"]
+    good = tmp_path / "good.npz"
+    calibrate(sensor, n_levels=6).save(good)
+    with np.load(good) as stored:
+        arrays = dict(stored)
+    packed = tmp_path / "packed.npz"
+    np.savez_compressed(packed, **arrays)
+    assert Calibration.load(packed).sensor_name == "capacitive4x4"
+    # spoil the deflate stream of the readings, keeping the archive's layout
+    with zipfile.ZipFile(packed) as archive:
+        member = archive.getinfo("readings.npy")
+    data = bytearray(packed.read_bytes())
+    body = member.header_offset + 30 + len(member.filename) + len(member.extra)
+    data[body : body + member.compress_size] = bytes(member.compress_size)
+    packed.write_bytes(bytes(data))
+    with pytest.raises(ValueError, match=r"packed\.npz: not a taxel calibration file \("):
+        Calibration.load(packed)
+
+
 def test_sensors_that_cannot_be_calibrated_per_taxel_say_why():
     with pytest.raises(ValueError, match="senses only changes of load"):
         calibrate(make_sensor("piezo8x8"))

@@ -8,49 +8,14 @@ check the header against the bytes the file holds first.
 
 from __future__ import annotations
 
-import math
 import os
-import zipfile
-from typing import IO
 
 import numpy as np
 
+from taxel._npy import check_header, read_npz
 from taxel.io._table import check_file
 
 __all__ = ["read_archive", "read_array"]
-
-_NPY_MAGIC = b"\x93NUMPY"
-_ZIP_MAGIC = b"PK\x03\x04"
-
-
-def _check_header(stream: IO[bytes], size: int) -> None:
-    """Raise ValueError when the .npy header in `stream` claims more data than `size` bytes.
-
-    Leaves `stream` at its start. Headers of other versions are left to `numpy.load`.
-    """
-    start = stream.read(len(_NPY_MAGIC))
-    stream.seek(0)
-    if not start:
-        raise ValueError("the file is empty")
-    if start.startswith(_ZIP_MAGIC):
-        raise ValueError("it is an .npz archive; save one array with np.save")
-    if start != _NPY_MAGIC:
-        raise ValueError("no NumPy header: a text or image file?")
-    version = np.lib.format.read_magic(stream)
-    readers = {
-        (1, 0): np.lib.format.read_array_header_1_0,
-        (2, 0): np.lib.format.read_array_header_2_0,
-    }
-    if version in readers:
-        shape, _, dtype = readers[version](stream)
-        claimed = math.prod(shape) * dtype.itemsize
-        held = size - stream.tell()
-        if not dtype.hasobject and claimed > held:
-            raise ValueError(
-                f"truncated or corrupt: its header claims shape {shape} of {dtype} "
-                f"({claimed} bytes), but {held} bytes follow"
-            )
-    stream.seek(0)
 
 
 def read_array(path: str | os.PathLike[str]) -> np.ndarray:
@@ -90,7 +55,7 @@ def read_array(path: str | os.PathLike[str]) -> np.ndarray:
     path = check_file(path)
     try:
         with path.open("rb") as handle:
-            _check_header(handle, path.stat().st_size)
+            check_header(handle, path.stat().st_size)
             array = np.load(handle, allow_pickle=False)
     except (ValueError, EOFError, OSError) as error:
         raise ValueError(f"{path}: not a readable .npy file ({error})") from None
@@ -110,17 +75,8 @@ def read_archive(path: str | os.PathLike[str]) -> dict[str, np.ndarray]:
         Naming the file when it is not a zip archive, or one of its arrays is unreadable.
     """
     path = check_file(path)
-    arrays = {}
-    # numpy leaves the file open when the archive is corrupt, so we own the handle
     try:
-        with path.open("rb") as handle, zipfile.ZipFile(handle) as archive:
-            for member in archive.infolist():
-                if not member.filename.endswith(".npy"):
-                    continue  # another file stored beside the arrays (a note, metadata)
-                name = member.filename.removesuffix(".npy")
-                with archive.open(member) as stream:
-                    _check_header(stream, member.file_size)
-                    arrays[name] = np.lib.format.read_array(stream, allow_pickle=False)
-    except (ValueError, EOFError, OSError, zipfile.BadZipFile) as error:
+        with path.open("rb") as handle:
+            return read_npz(handle)
+    except (ValueError, OSError) as error:
         raise ValueError(f"{path}: not a readable .npz file ({error})") from None
-    return arrays

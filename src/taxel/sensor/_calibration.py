@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import json
 import os
-import zipfile
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -20,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from taxel._npy import read_npz
 from taxel._validation import as_finite_array
 from taxel.sensor._monotone import invert_pchip
 from taxel.sensor._sensor import TactileSensor
@@ -216,21 +216,22 @@ class Calibration:
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> Calibration:
-        """Read a calibration written by `save`; a wrong or damaged file raises ValueError."""
+        """Read a calibration written by `save`; a wrong or damaged file raises ValueError.
+
+        The error names the file. Each array's header is checked against the bytes the
+        archive holds before the array is read, so that a corrupt one claiming a huge shape
+        is refused rather than allocated (a MemoryError).
+        """
         path = Path(path)
         if path.is_dir():
             raise ValueError(f"{path}: a folder, not a taxel calibration file")
         if not path.is_file():
             raise FileNotFoundError(f"no such file: {path}")
         try:
-            with path.open("rb") as handle:
-                data = np.load(handle, allow_pickle=False)
-                if not isinstance(data, np.lib.npyio.NpzFile):
-                    raise ValueError("one array, not an .npz archive")
-                with data:
-                    arrays = {name: data[name] for name in data.files}
+            with path.open("rb") as handle:  # (each header checked before numpy allocates)
+                arrays = read_npz(handle)
             meta = json.loads(str(arrays.pop("meta")))
-        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as error:
+        except (OSError, ValueError, KeyError) as error:
             raise ValueError(f"{path}: not a taxel calibration file ({error})") from None
         if not isinstance(meta, dict) or meta.get("format") != _FORMAT:
             format_tag = meta.get("format") if isinstance(meta, dict) else None
