@@ -97,7 +97,9 @@ def test_edge_radius_loads_its_table(capsys, small_files):
 def test_stiffness_tells_the_racquet_ball_from_the_acrylic_sphere(capsys, small_files):
     pad = str(small_files / "pad.json")
     assert main(["active", "stiffness", "--calibration", pad]) == 0
-    assert "verdict: deformable" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    assert "verdict: deformable" in out
+    assert "inf" not in out  # a pad whose compression did not grow is said so, not "inf N/m"
     assert main(["active", "stiffness", "--object", "acrylic sphere", "--calibration", pad]) == 0
     assert "verdict: rigid" in capsys.readouterr().out
 
@@ -232,6 +234,18 @@ def test_a_wrong_or_deeply_nested_file_names_its_flag(capsys, tmp_path, procedur
         (
             ["stiffness", "--forces", "0.3", "4", "--calibration", "/nonexistent/pad.json"],
             "--forces 0.3 4: the light press must exceed the 0.5 N touch",
+        ),
+        (
+            ["stiffness", "--forces", "39", "12", "--calibration", "/nonexistent/pad.json"],
+            "--forces 39 12: give the light force first, then a firmer one",
+        ),
+        (
+            ["stiffness", "--forces", "0.3", "0.3"],
+            "--forces 0.3 0.3: give the light force first, then a firmer one",
+        ),
+        (  # refused before the table is built or written
+            ["edge-radius", "--radius-mm", "3", "--forces", "39", "12", "--table", "/no/t.json"],
+            "--forces 39 12: give the light force first, then a firmer one",
         ),
     ],
 )

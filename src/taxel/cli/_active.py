@@ -61,7 +61,14 @@ def finger_limit(sensor: str) -> float:
 
 
 def _check_forces(flag: str, forces: Sequence[float], sensor: str) -> None:
-    """Refuse, before any press, forces beyond what the finger with `sensor` may press."""
+    """Refuse, before any press, forces beyond what the finger with `sensor` may press.
+
+    A light and a firm force (two given to `flag`) must come in that order.
+    """
+    if len(forces) == 2 and forces[0] >= forces[1]:
+        raise CommandLineError(
+            f"{flag} {forces[0]:g} {forces[1]:g}: give the light force first, then a firmer one"
+        )
     limit = finger_limit(sensor)
     if max(forces) > limit:
         given = " ".join(f"{force:g}" for force in forces)
@@ -183,12 +190,12 @@ def _stiffness(arguments: argparse.Namespace) -> int:
             f"--shape {arguments.shape} needs its --size-mm and --modulus-mpa "
             "(and optionally --poisson-ratio)"
         )
+    _check_forces("--forces", arguments.forces, arguments.sensor)
     if arguments.forces[0] <= _TOUCH:  # the procedure touches at _TOUCH first
         raise CommandLineError(
             f"--forces {' '.join(f'{f:g}' for f in arguments.forces)}: the light press must "
             f"exceed the {_TOUCH:g} N touch that finds the object first"
         )
-    _check_forces("--forces", arguments.forces, arguments.sensor)
     built: list[str] = []
     calibration = file_or_build(
         arguments.calibration,
@@ -224,7 +231,12 @@ def _stiffness(arguments: argparse.Namespace) -> int:
         + ", ".join(f"{force:g}" for force in result.forces)
         + f" N on {arguments.sensor}",
         "verdict: " + ("deformable" if result.deformable else "rigid"),
-        f"object stiffness: {result.stiffness:.3g} N/m (pad {result.pad_stiffness:.3g} N/m)",
+        f"object stiffness: {result.stiffness:.3g} N/m ("
+        + (
+            f"pad {result.pad_stiffness:.3g} N/m)"
+            if math.isfinite(result.pad_stiffness)
+            else "the pad's compression did not grow between the presses: the load spread)"
+        ),
         "height: " + " / ".join(f"{h * 1e3:.2f}" for h in result.heights) + " mm",
         "contact area: " + " -> ".join(f"{a:.0f}" for a in result.area_pixels) + " pixels",
     ]
