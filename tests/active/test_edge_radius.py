@@ -175,3 +175,9 @@ def test_a_procedure_is_given_a_table_and_a_probe(table):
 def test_table_counts_are_whole_numbers():
     with pytest.raises(ValueError, match="`orientations` must be a whole number, got 2.5"):
         build_edge_radius_table([2e-3, 4e-3], orientations=2.5)
+
+
+def test_the_default_radii_are_those_the_sensor_s_load_grid_resolves():
+    # resistive16's cells are 2 mm: the 1 mm default edge would fall between their points
+    table = build_edge_radius_table(sensor="resistive16", orientations=2)
+    assert table.radii.tolist() == [1.5e-3, 2.2e-3, 3.3e-3, 4.7e-3, 6.8e-3, 10e-3]

@@ -243,6 +243,10 @@ def test_a_wrong_or_deeply_nested_file_names_its_flag(capsys, tmp_path, procedur
             ["stiffness", "--forces", "0.3", "0.3"],
             "--forces 0.3 0.3: give the light force first, then a firmer one",
         ),
+        (  # refused before the table is built
+            ["edge-radius", "--radius-mm", "0.1", "--table", "/no/t.json"],
+            "--radius-mm 0.1: vhdta128's load grid resolves edges of radius above 0.129 mm",
+        ),
         (  # refused before the table is built or written
             ["edge-radius", "--radius-mm", "3", "--forces", "39", "12", "--table", "/no/t.json"],
             "--forces 39 12: give the light force first, then a firmer one",
@@ -327,7 +331,7 @@ def test_an_unwritable_table_is_found_before_the_build(capsys):
 def test_a_build_that_fails_leaves_one_line(capsys, tmp_path):
     # the table's build refuses the sensor: the error alone, no notice of the build before it
     table = tmp_path / "t.json"
-    args = ["active", "edge-radius", "--radius-mm", "2", "--sensor", "capacitive4x4"]
+    args = ["active", "edge-radius", "--radius-mm", "3", "--sensor", "capacitive4x4"]
     assert main([*args, "--forces", "2", "4", "--table", str(table)]) == 2
     assert capsys.readouterr().err == (
         "taxel active: error: `sensor` is too small for an edge cross-section: 4 x 4 taxels "

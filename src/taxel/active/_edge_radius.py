@@ -264,7 +264,7 @@ class EdgeRadius:
 
 
 def build_edge_radius_table(
-    radii: Sequence[float] = DEFAULT_EDGE_RADII,
+    radii: Sequence[float] | None = None,
     *,
     sensor: str | TactileSensor = "vhdta128",
     forces: Sequence[float] = DEFAULT_FORCES,
@@ -276,8 +276,11 @@ def build_edge_radius_table(
 
     Parameters
     ----------
-    radii : sequence of float, default `DEFAULT_EDGE_RADII`
-        The known radii [m] (at least 2).
+    radii : sequence of float, optional
+        The known radii [m] (at least 2). By default those of `DEFAULT_EDGE_RADII` that
+        the sensor's load grid resolves (wider than half its spacing): all seven on
+        vhdta128, from 1.5 mm on resistive16 (2 mm cells; there, edges at 15 and 30
+        degrees cover too little of the 16 x 16 array: build with ``orientations=2``).
     sensor : str or TactileSensor, default "vhdta128"
         The sensor (a preset name or a sensor).
     forces : sequence of float, default (12, 39)
@@ -301,13 +304,16 @@ def build_edge_radius_table(
     >>> table.radii.tolist()
     [0.002, 0.006]
     """
+    chosen = imaging_sensor(sensor)
+    if radii is None:
+        spacing = max(chosen.load_grid.spacing)
+        radii = [radius for radius in DEFAULT_EDGE_RADII if radius > spacing / 2]
     radii = [check_positive("radii", radius) for radius in radii]
     if len(set(radii)) < 2:
         raise ValueError(f"`radii` must hold at least 2 distinct radii, got {radii}")
     forces = [check_positive("forces", force) for force in forces]
     orientations = check_count("orientations", orientations, minimum=2)
     generator = as_rng("rng", rng)
-    chosen = imaging_sensor(sensor)
     check_section_fits("sensor", chosen.shape, chosen.taxel_pitch)
     for radius in radii:
         _check_resolved("radii", radius, chosen)
