@@ -313,7 +313,12 @@ def _add_press_force(parser: argparse.ArgumentParser) -> None:
 
 def register(commands: argparse._SubParsersAction) -> None:
     """Add ``taxel active`` and its procedures to the command line."""
-    parser = commands.add_parser("active", help="active touch with a simulated finger")
+    parser = commands.add_parser(
+        "active",
+        help="active touch with a simulated finger",
+        description="Active touch (Ellis, section 2.2): a simulated finger carrying a sensor "
+        "presses, probes and slides, and each procedure reports what it found and did.",
+    )
     group = parser.add_subparsers(
         dest="procedure", metavar="PROCEDURE", required=True, parser_class=type(parser)
     )
@@ -323,7 +328,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         "surface normal and planarity of a tilted box face " "from several probes at random poses",
         _probe_plane,
     )
-    plane.add_argument("--sensor", type=preset, default="resistive16", help="static sensor preset")
+    plane.add_argument(
+        "--sensor", type=preset, default="resistive16", help="static sensor preset (%(default)s)"
+    )
     plane.add_argument(
         "--probes",
         type=integer_in(3, 1000),  # about 45 ms a press: 1000 take most of a minute
@@ -347,7 +354,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         group, "locate-corner", "a box corner from probing its three faces", _locate_corner
     )
     corner.add_argument(
-        "--sensor", type=preset, default="resistive16", help="static sensor preset"
+        "--sensor", type=preset, default="resistive16", help="static sensor preset (%(default)s)"
     )
     corner.add_argument(
         "--probes-per-face",
@@ -384,7 +391,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         "sensor's full-scale pressure over a quarter of its area (photoelastic64: 12.8 N); a "
         "--table is made at its forces",
     )
-    edge.add_argument("--sensor", type=preset, default="vhdta128", help="sensor preset")
+    edge.add_argument(
+        "--sensor", type=preset, default="vhdta128", help="sensor preset (%(default)s)"
+    )
     edge.add_argument(
         "--table",
         metavar="TABLE.json",
@@ -424,7 +433,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         metavar=("LIGHT", "FIRM"),
         help="the two forces [N] (12 39), at most the finger's limit (see edge-radius)",
     )
-    stiff.add_argument("--sensor", type=preset, default="vhdta128", help="sensor preset")
+    stiff.add_argument(
+        "--sensor", type=preset, default="vhdta128", help="sensor preset (%(default)s)"
+    )
     stiff.add_argument(
         "--calibration",
         metavar="PAD.json",
@@ -442,7 +453,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         type=choice(MODEL_NAMES),
         help=f"the model to touch ({', '.join(MODEL_NAMES)})",
     )
-    recognize.add_argument("--sensor", type=preset, default="vhdta128", help="sensor preset")
+    recognize.add_argument(
+        "--sensor", type=preset, default="vhdta128", help="sensor preset (%(default)s)"
+    )
     recognize.add_argument(
         "--force",
         type=positive,
