@@ -21,3 +21,19 @@ def full_disk_savefig(monkeypatch):
 
     monkeypatch.setattr(Figure, "savefig", disk_full)
     return monkeypatch
+
+
+@pytest.fixture
+def spoil_deflate():
+    """Zero one member's compressed bytes in an .npz, keeping the archive's layout."""
+    import zipfile
+
+    def spoil(path, name):
+        with zipfile.ZipFile(path) as archive:
+            member = archive.getinfo(name)
+        data = bytearray(path.read_bytes())
+        body = member.header_offset + 30 + len(member.filename) + len(member.extra)
+        data[body : body + member.compress_size] = bytes(member.compress_size)
+        path.write_bytes(bytes(data))
+
+    return spoil

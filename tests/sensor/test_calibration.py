@@ -259,9 +259,9 @@ def test_a_damaged_calibration_file_is_refused_naming_it(tmp_path):
         assert str(refused.value) == f"{path}: not a taxel calibration file ({problem})"
 
 
-def test_a_calibration_with_a_corrupt_compressed_array_is_refused(tmp_path, sensors):
-    import zipfile
-
+def test_a_calibration_with_a_corrupt_compressed_array_is_refused(
+    tmp_path, sensors, spoil_deflate
+):
     sensor = sensors["capacitive4x4"]
     good = tmp_path / "good.npz"
     calibrate(sensor, n_levels=6).save(good)
@@ -270,13 +270,7 @@ def test_a_calibration_with_a_corrupt_compressed_array_is_refused(tmp_path, sens
     packed = tmp_path / "packed.npz"
     np.savez_compressed(packed, **arrays)
     assert Calibration.load(packed).sensor_name == "capacitive4x4"
-    # spoil the deflate stream of the readings, keeping the archive's layout
-    with zipfile.ZipFile(packed) as archive:
-        member = archive.getinfo("readings.npy")
-    data = bytearray(packed.read_bytes())
-    body = member.header_offset + 30 + len(member.filename) + len(member.extra)
-    data[body : body + member.compress_size] = bytes(member.compress_size)
-    packed.write_bytes(bytes(data))
+    spoil_deflate(packed, "readings.npy")  # the readings' deflate stream
     with pytest.raises(ValueError, match=r"packed\.npz: not a taxel calibration file \("):
         Calibration.load(packed)
 
