@@ -174,6 +174,22 @@ def test_gap_cut_by_the_border_of_a_falling_face_is_no_hole():
     assert not detect_holes(_hole_in_falling_face(0.0), 1e-3).present
 
 
+def test_hole_where_a_face_presses_weakly_toward_a_corner():
+    # a plate over the whole array presses 1 at one corner and 0.15 at the other (the cover
+    # bears less toward the array's border); around a hole 18.5 mm out toward the weak
+    # corner the face presses ~0.3, under a contact's seed level (0.35 of the contrast) but
+    # all round above the hole's own half level: it is a face, and the hole is found
+    y, x = np.mgrid[:64, :64].astype(float)
+    face = 1.0 - 0.85 * (x + y) / 126.0
+    field = np.where(np.hypot(x - 50.0, y - 50.0) > 4.0, face, 0.0)
+    noise = np.random.default_rng(1).normal(0.0, 0.01, field.shape)
+    image = ndimage.gaussian_filter(field, 1.0, mode="nearest") + noise
+    report = detect_holes(image, 1e-3)
+    assert report.count == 1
+    assert report.items[0].radius_m == pytest.approx(4e-3, rel=0.1)
+    assert report.items[0].center_m == pytest.approx((18.5e-3, 18.5e-3), abs=0.6e-3)
+
+
 @pytest.mark.parametrize(
     ("pattern", "parameters"),
     [(cone, {}), (sphere, {}), (flat_punch, {}), (band, {}), (arc, {}), (corner, {})],

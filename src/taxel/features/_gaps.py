@@ -28,7 +28,7 @@ import cv2
 import numpy as np
 
 from taxel.features._basins import MIN_GAP_AREA, SLOT_BORDER_WIDTHS, SLOT_ELONGATION, basins
-from taxel.features._image import Prepared
+from taxel.features._image import K_HIGH, Prepared
 from taxel.features._moments import binary_moments
 
 __all__ = ["Hole", "HoleReport", "Slot", "SlotReport", "gaps_core"]
@@ -36,8 +36,14 @@ __all__ = ["Hole", "HoleReport", "Slot", "SlotReport", "gaps_core"]
 # A basin holds a gap when its bottom lies below this fraction of the surrounding level.
 _DIP = 0.5
 # A gap lies in a face: at least half the ring 2-6 taxels around it presses as clearly as a
-# contact's seed (see `prepare`). Not so in the noisy fringe of a weak contact, where noise
-# alone can enclose a dark patch.
+# contact's seed (`prepared.high`, see `prepare`), or at or above the gap's own half level
+# (where a blurred step crosses its true wall) and the noise floor of a seed (K_HIGH
+# sigmas). Judged against the gap's own wall, a plate pressing less toward the array's
+# border still makes a face around its hole; a narrow ridge (a can's rim, a box edge)
+# leaves most of the ring off the contact either way; and in the noisy fringe of a weak
+# contact, where noise alone can enclose a dark patch, the ring clears neither. In a
+# texture every valley is ringed by bumps at their own level: there only the seed's level
+# makes a face.
 _FACE = 0.5
 # A hole is round: its equivalent-ellipse axes within 2:1, and its area at most 1.9 times the
 # largest inscribed disk (a disk gives ~1.2 on a grid; the irregular valleys between the
@@ -227,9 +233,12 @@ def _half_levels(window: np.ndarray, wall: np.ndarray, baseline: float, half: fl
 
 
 def _measure(
-    prepared: Prepared, contour: np.ndarray, level: float
+    prepared: Prepared, contour: np.ndarray, level: float, textured: bool
 ) -> tuple[Hole | Slot | None, tuple[slice, slice], np.ndarray, float] | None:
-    """Decide whether one basin holds a hole or a slot, and measure it."""
+    """Decide whether one basin holds a hole or a slot, and measure it.
+
+    `textured`: the contact is a texture (see `_FACE`).
+    """
     shape = prepared.image.shape
     left, top, width, height = cv2.boundingRect(contour)
     # everything below is read within 6 taxels of the basin (the wall's ring): a window
@@ -248,10 +257,12 @@ def _measure(
     wall = ring & (window >= level)
     if not np.count_nonzero(wall):
         return None
-    if cv2.countNonZero((ring & (window >= prepared.high)).view(np.uint8)) < _FACE * (
-        cv2.countNonZero(ring.view(np.uint8))
-    ):
-        return None  # no face around it (a noisy fringe, the valleys of a texture)
+    ring_size = cv2.countNonZero(ring.view(np.uint8))
+    seeded = (
+        cv2.countNonZero((ring & (window >= prepared.high)).view(np.uint8)) >= _FACE * ring_size
+    )
+    if textured and not seeded:
+        return None  # no face around it: the valleys of a texture
     values = window[wall]
     tenth, ninetieth = (values.size - 1) // 10, (values.size - 1) * 9 // 10
     values.partition((tenth, ninetieth))  # in place: `values` is a copy already
@@ -260,6 +271,10 @@ def _measure(
         surround - prepared.baseline, 1e-30
     )
     half = prepared.baseline + _DIP * (surround - prepared.baseline)
+    if not seeded:  # (not textured) a face at the gap's own level, clear of the noise?
+        face = max(half, prepared.baseline + K_HIGH * prepared.noise)
+        if cv2.countNonZero((ring & (window >= face)).view(np.uint8)) < _FACE * ring_size:
+            return None  # no face around it (a ridge, a noisy fringe)
     if bottom > half:
         return None  # a dimple of the pressure, not a gap in the contact
     near = away <= 3.0
@@ -358,7 +373,7 @@ def gaps_core(
                 col, row = moments["m10"] / moments["m00"], moments["m01"] / moments["m00"]
                 if explained[int(round(row)), int(round(col))]:
                     continue
-        measured = _measure(prepared, contour, level)
+        measured = _measure(prepared, contour, level, textured)
         if measured is None:
             continue
         found, where, region, even = measured
