@@ -93,6 +93,7 @@ def test_public_names():
         "recognize_object",
         "remove_load_coherent",
         "score_slip_detection",
+        "sharpest_edge_radius",
         "simulate_slip",
         "slide_texture",
         "slip_sensors",

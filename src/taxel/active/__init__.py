@@ -38,7 +38,7 @@ Edge radius from a light and a firm press (empirical table, JSON)
 -----------------------------------------------------------------
 EdgeRadius, EdgeRadiusResult, measure_edge_radius, make_edge, edge_cross_section,
 EdgeCrossSection, SECTION_DESCRIPTORS, EdgeRadiusTable, fit_edge_radius_table,
-build_edge_radius_table, DEFAULT_EDGE_RADII
+build_edge_radius_table, DEFAULT_EDGE_RADII, sharpest_edge_radius
 
 Deformation and stiffness (touch, light and firm press)
 -------------------------------------------------------
@@ -70,6 +70,7 @@ from taxel.active._edge_radius import (
     build_edge_radius_table,
     make_edge,
     measure_edge_radius,
+    sharpest_edge_radius,
 )
 from taxel.active._edge_section import SECTION_DESCRIPTORS, EdgeCrossSection, edge_cross_section
 from taxel.active._edge_table import EdgeRadiusTable, fit_edge_radius_table
@@ -234,6 +235,7 @@ __all__ = [
     "recognize_object",
     "remove_load_coherent",
     "score_slip_detection",
+    "sharpest_edge_radius",
     "simulate_slip",
     "slide_texture",
     "slip_sensors",

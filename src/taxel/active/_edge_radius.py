@@ -43,6 +43,7 @@ __all__ = [
     "build_edge_radius_table",
     "make_edge",
     "measure_edge_radius",
+    "sharpest_edge_radius",
 ]
 
 # the E6 preferred numbers from 1 to 10 mm: equal steps in ln(radius) (ratio ~1.47), since
@@ -92,16 +93,28 @@ def make_edge(
     )
 
 
-def _check_resolved(name: str, radius: float, sensor: TactileSensor) -> None:
-    """Raise unless an edge of `radius` is wider than a cell of the sensor's load grid.
+def sharpest_edge_radius(sensor: TactileSensor) -> float:
+    """The radius [m] an edge must exceed for the sensor's load grid to see it.
 
-    The edge is a cylinder's crest, 2 `radius` wide seen from above: a narrower crest can
-    fall between the grid's cell centres, and the contact model does not see it at all.
+    The edge is a cylinder's crest, 2 radius wide seen from above: a narrower crest than a
+    cell of the grid can fall between the cells' centres, and the contact model does not
+    see it at all. So: half the grid's largest spacing.
+
+    Examples
+    --------
+    >>> from taxel.sensor import make_sensor
+    >>> round(sharpest_edge_radius(make_sensor("resistive16")) * 1e3, 3)
+    1.0
     """
-    spacing = max(sensor.load_grid.spacing)
-    if radius <= spacing / 2:
+    return max(sensor.load_grid.spacing) / 2
+
+
+def _check_resolved(name: str, radius: float, sensor: TactileSensor) -> None:
+    """Raise unless an edge of `radius` is sharper than the sensor's load grid sees."""
+    sharpest = sharpest_edge_radius(sensor)
+    if radius <= sharpest:
         raise ValueError(
-            f"`{name}` must be > half the load grid's spacing ({spacing / 2 * 1e3:.3g} mm) "
+            f"`{name}` must be > half the load grid's spacing ({sharpest * 1e3:.3g} mm) "
             f"of {sensor.name}, got {radius * 1e3:.3g} mm: a sharper edge falls between "
             "the grid's points"
         )
@@ -306,8 +319,8 @@ def build_edge_radius_table(
     """
     chosen = imaging_sensor(sensor)
     if radii is None:
-        spacing = max(chosen.load_grid.spacing)
-        radii = [radius for radius in DEFAULT_EDGE_RADII if radius > spacing / 2]
+        sharpest = sharpest_edge_radius(chosen)
+        radii = [radius for radius in DEFAULT_EDGE_RADII if radius > sharpest]
     radii = [check_positive("radii", radius) for radius in radii]
     if len(set(radii)) < 2:
         raise ValueError(f"`radii` must hold at least 2 distinct radii, got {radii}")

@@ -130,16 +130,21 @@ def _locate_corner(arguments: argparse.Namespace) -> int:
 
 
 def _edge_radius(arguments: argparse.Namespace) -> int:
-    from taxel.active import EdgeRadiusTable, build_edge_radius_table, measure_edge_radius
+    from taxel.active import (
+        EdgeRadiusTable,
+        build_edge_radius_table,
+        measure_edge_radius,
+        sharpest_edge_radius,
+    )
     from taxel.sensor import make_sensor
 
     forces = _EDGE_FORCES if arguments.forces is None else tuple(arguments.forces)
     _check_forces("--forces", forces, arguments.sensor)
-    half_cell = max(make_sensor(arguments.sensor).load_grid.spacing) / 2
-    if arguments.radius_mm * 1e-3 <= half_cell:  # refused now, not after a table's build
+    sharpest = sharpest_edge_radius(make_sensor(arguments.sensor))
+    if arguments.radius_mm * 1e-3 <= sharpest:  # refused now, not after a table's build
         raise CommandLineError(
             f"--radius-mm {arguments.radius_mm:g}: {arguments.sensor}'s load grid resolves "
-            f"edges of radius above {half_cell * 1e3:.3g} mm (half its cell), no sharper"
+            f"edges of radius above {sharpest * 1e3:.3g} mm (half its cell), no sharper"
         )
     built: list[str] = []
     table = file_or_build(
