@@ -181,3 +181,21 @@ def test_the_default_radii_are_those_the_sensor_s_load_grid_resolves():
     # resistive16's cells are 2 mm: the 1 mm default edge would fall between their points
     table = build_edge_radius_table(sensor="resistive16", orientations=2)
     assert table.radii.tolist() == [1.5e-3, 2.2e-3, 3.3e-3, 4.7e-3, 6.8e-3, 10e-3]
+
+
+def test_an_oblique_edge_on_a_coarse_array_is_measured():
+    # on resistive16's 2 mm cells an edge at 15 degrees falls on a staircase of cells, and
+    # one sample line in four passes between two steps; the default table holds edges at
+    # 0, 15, 30 and 45 degrees, and an edge at 75 degrees is measured
+    table = build_edge_radius_table([2.2e-3, 6.8e-3], sensor="resistive16")
+    assert table.radii.tolist() == [2.2e-3, 6.8e-3]
+    result = measure_edge_radius(
+        3.3e-3, table=table, sensor="resistive16", angle=math.radians(75), rng=1
+    )
+    assert 2.2e-3 <= result.radius <= 6.8e-3
+    # a ball still presses too little of the fitted line to pass for an edge
+    finger = SimulatedFinger(
+        make_sensor("resistive16"), [make_ball("ball", 5e-3)], make_pose(DOWN, [0, 0, 0.015])
+    )
+    with pytest.raises(ValueError, match="no straight edge across the sensor"):
+        EdgeRadius(table).run(finger)

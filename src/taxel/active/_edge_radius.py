@@ -292,8 +292,7 @@ def build_edge_radius_table(
     radii : sequence of float, optional
         The known radii [m] (at least 2). By default those of `DEFAULT_EDGE_RADII` that
         the sensor's load grid resolves (wider than half its spacing): all seven on
-        vhdta128, from 1.5 mm on resistive16 (2 mm cells; there, edges at 15 and 30
-        degrees cover too little of the 16 x 16 array: build with ``orientations=2``).
+        vhdta128, from 1.5 mm on resistive16 (2 mm cells).
     sensor : str or TactileSensor, default "vhdta128"
         The sensor (a preset name or a sensor).
     forces : sequence of float, default (12, 39)
