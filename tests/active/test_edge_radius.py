@@ -7,11 +7,13 @@ import numpy as np
 import pytest
 
 from taxel.active import (
+    EdgeCrossSection,
     EdgeRadius,
     EdgeRadiusTable,
     SimulatedFinger,
     build_edge_radius_table,
     edge_cross_section,
+    fit_edge_radius_table,
     make_ball,
     make_edge,
     measure_edge_radius,
@@ -90,6 +92,14 @@ def test_table_round_trips_through_a_file(table, tmp_path):
     loads = table.reference_loads * 1.1
     assert np.array_equal(loaded.predict(loads), table.predict(loads))
     assert loaded.sensor == "vhdta128"
+    assert np.array_equal(loaded.correlation, table.correlation)
+    # a table saved before the correlation was stored reads as independent descriptors
+    data = json.loads(path.read_text())
+    del data["correlation"]
+    (tmp_path / "old.json").write_text(json.dumps(data))
+    assert EdgeRadiusTable.load(tmp_path / "old.json").correlation is None
+    with pytest.raises(ValueError, match=r"`correlation` must be a \(12, 12\) correlation"):
+        EdgeRadiusTable(**{**table.__dict__, "correlation": 2 * table.correlation})
     with pytest.raises(ValueError, match="is not an edge radius table"):
         (tmp_path / "other.json").write_text("{}")
         EdgeRadiusTable.load(tmp_path / "other.json")
@@ -199,3 +209,55 @@ def test_an_oblique_edge_on_a_coarse_array_is_measured():
     )
     with pytest.raises(ValueError, match="no straight edge across the sensor"):
         EdgeRadius(table).run(finger)
+
+
+def _synthetic_section(radius, force, chord, rng, common=1.0):
+    # descriptors linear in ln(radius) and ln(load), with an error shared by all of them
+    # (as the widths, area and peak of one profile share it) and a small one of their own
+    from taxel.active import SECTION_DESCRIPTORS
+
+    load = force / chord
+    shared = rng.normal()
+    values = {
+        name: 1.0
+        + (k + 1) * math.log(radius / 1e-3)
+        + 0.3 * math.log(load)
+        + 0.05 * (common * shared + rng.normal())
+        for k, name in enumerate(SECTION_DESCRIPTORS)
+    }
+    return EdgeCrossSection(
+        angle_rad=0.0,
+        offset_m=0.0,
+        chord_m=chord,
+        normal_force=force,
+        force_per_length=load,
+        positions=np.zeros(1),
+        profile=np.zeros(1),
+        baseline=0.0,
+        n_lines=10,
+        descriptors=values,
+    )
+
+
+def test_the_uncertainty_counts_descriptors_that_err_together_once():
+    rng = np.random.default_rng(3)
+    radii = np.repeat([1e-3, 2e-3, 4e-3, 8e-3, 16e-3], 40)
+    pairs = [
+        [_synthetic_section(r, force, chord, rng) for force in (12.0, 39.0)]
+        for r, chord in zip(radii, rng.uniform(0.02, 0.03, radii.size), strict=True)
+    ]
+    table = fit_edge_radius_table(radii, pairs)
+    independent = EdgeRadiusTable(**{**table.__dict__, "correlation": None})
+    z_correlated, z_independent = [], []
+    for _ in range(300):
+        truth = math.exp(rng.uniform(math.log(1.5e-3), math.log(12e-3)))
+        chord = rng.uniform(0.02, 0.03)
+        sections = [_synthetic_section(truth, force, chord, rng) for force in (12.0, 39.0)]
+        for estimator, scores in ((table, z_correlated), (independent, z_independent)):
+            radius, uncertainty, _ = estimator.estimate(sections)
+            scores.append((radius - truth) / uncertainty)
+    # the shared error (half of each descriptor's variance) moves the six descriptors of a
+    # press together: counted once, the standard uncertainty covers the errors' spread;
+    # counted as six independent ones, it is too small by up to sqrt(1 + 5 x 0.5) = 1.9
+    assert 0.85 < np.std(z_correlated) < 1.2
+    assert np.std(z_independent) > 1.5

@@ -73,6 +73,11 @@ class EdgeRadiusTable:
         Name of the sensor the table was made on; it is valid for that sensor only.
     n_presses : int
         Presses the table was fitted from.
+    correlation : numpy.ndarray, optional
+        (n_forces * n_descriptors, n_forces * n_descriptors) correlation of the
+        standardised residuals (forces outer, descriptors inner). The widths, area and peak
+        of one cross-section move together, so they carry less than independent evidence;
+        None treats them as independent (tables saved before it was stored).
     """
 
     radii: np.ndarray
@@ -83,6 +88,7 @@ class EdgeRadiusTable:
     spreads: np.ndarray
     sensor: str = ""
     n_presses: int = 0
+    correlation: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         radii = as_finite_array("radii", self.radii, ndim=1)
@@ -109,6 +115,20 @@ class EdgeRadiusTable:
         object.__setattr__(self, "forces", forces)
         object.__setattr__(self, "spreads", spreads)
         object.__setattr__(self, "reference_loads", loads)
+        if self.correlation is not None:
+            size = forces.size * len(SECTION_DESCRIPTORS)
+            correlation = as_finite_array("correlation", self.correlation, ndim=2)
+            if (
+                correlation.shape != (size, size)
+                or not np.allclose(correlation, correlation.T)
+                or not np.allclose(np.diag(correlation), 1.0)
+                or np.linalg.eigvalsh(correlation).min() < -1e-9
+            ):
+                raise ValueError(
+                    f"`correlation` must be a ({size}, {size}) correlation matrix "
+                    "(symmetric, unit diagonal, positive semi-definite)"
+                )
+            object.__setattr__(self, "correlation", correlation)
 
     # ---------------------------------------------------------------------- prediction
     def predict(self, force_per_length: Any) -> np.ndarray:
@@ -147,8 +167,10 @@ class EdgeRadiusTable:
         fewer), which smooths the noise of single entries; the estimate minimises the mean
         squared standardised difference (the residual) over ln(radius) between the
         smallest and largest radius.
-        The uncertainty is the change of radius that raises the summed squared difference by
-        one, from the curvature at the minimum.
+        The uncertainty is that of this weighted least-squares estimate when the descriptors'
+        errors are correlated as in the table's residuals (`correlation`): with g the
+        change of the standardised descriptors per unit of ln(radius) at the estimate,
+        var(ln R) = g' C g / (g' g)^2, which is 1 / (g' g) for independent descriptors.
         """
         measured, loads = self._measured(sections)
         predicted = self.predict(loads)
@@ -159,14 +181,22 @@ class EdgeRadiusTable:
         total = (standardised**2).sum(axis=1)
         best = int(np.argmin(total))
         log_radius = float(grid[best])
+        uncertainty = math.inf
         if 0 < best < _GRID - 1:  # parabolic refinement of the minimum
             left, centre, right = total[best - 1 : best + 2]
-            curvature = (left - 2 * centre + right) / (grid[1] - grid[0]) ** 2
+            step = grid[1] - grid[0]
+            curvature = (left - 2 * centre + right) / step**2
             if curvature > 0:
-                log_radius -= (right - left) / (2 * (grid[1] - grid[0])) / curvature
-            uncertainty = math.sqrt(2.0 / curvature) if curvature > 0 else math.inf
-        else:
-            uncertainty = math.inf
+                log_radius -= (right - left) / (2 * step) / curvature
+            gradient = (standardised[best + 1] - standardised[best - 1]) / (2 * step)
+            information = float(gradient @ gradient)
+            if information > 0:
+                correlated = (
+                    information
+                    if self.correlation is None
+                    else float(gradient @ self.correlation @ gradient)
+                )
+                uncertainty = math.sqrt(max(correlated, 0.0)) / information
         radius = math.exp(log_radius)
         residual = float(total[best] / standardised.shape[1])
         return radius, radius * uncertainty, residual
@@ -197,6 +227,7 @@ class EdgeRadiusTable:
             "intercepts": self.intercepts.tolist(),
             "slopes": self.slopes.tolist(),
             "spreads": self.spreads.tolist(),
+            "correlation": None if self.correlation is None else self.correlation.tolist(),
         }
 
     def save(self, path: str | os.PathLike[str], *, overwrite: bool = False) -> Path:
@@ -232,6 +263,9 @@ class EdgeRadiusTable:
             spreads=np.array(data["spreads"], float),
             sensor=str(data.get("sensor", "")),
             n_presses=int(data.get("n_presses", 0)),
+            correlation=None
+            if data.get("correlation") is None
+            else np.array(data["correlation"], float),
         )
 
 
@@ -265,7 +299,10 @@ def fit_edge_radius_table(
     ``descriptor = a(R) + (s0 + s1 ln R) x``: one intercept per radius and a slope that
     changes smoothly with the radius, fitted by least squares over all presses. The
     descriptor's spread is the residual standard deviation (floored at 0.1 % of its range
-    over the table).
+    over the table). The correlation of the standardised residuals over all forces and
+    descriptors is shrunk toward independence as if the table held as many more presses as
+    there are descriptors with uncorrelated errors, so a table of few presses, whose sample
+    correlation has low rank, still gives a positive uncertainty.
     """
     radius_per_press = as_finite_array("radii", radii, ndim=1)
     sections = [list(pair) for pair in sections]
@@ -294,6 +331,7 @@ def fit_edge_radius_table(
     intercepts = np.zeros((n_radii, forces.size, len(SECTION_DESCRIPTORS)))
     slopes = np.zeros_like(intercepts)
     spreads = np.zeros((forces.size, len(SECTION_DESCRIPTORS)))
+    residuals = np.zeros_like(measured)
     for f in range(forces.size):
         design = np.zeros((n_presses, n_radii + 2))
         design[np.arange(n_presses), index] = 1.0
@@ -305,6 +343,7 @@ def fit_edge_radius_table(
             )
         coefficients, *_ = np.linalg.lstsq(design, measured[:, f, :], rcond=None)
         residual = measured[:, f, :] - design @ coefficients
+        residuals[:, f] = residual
         dof = max(n_presses - design.shape[1], 1)
         spread = np.sqrt((residual**2).sum(axis=0) / dof)
         span = np.ptp(coefficients[:n_radii], axis=0)
@@ -314,6 +353,7 @@ def fit_edge_radius_table(
             coefficients[n_radii] + coefficients[n_radii + 1] * np.log(table_radii)[:, None]
         )
     return EdgeRadiusTable(
+        correlation=_residual_correlation(residuals / spreads, dof),
         radii=table_radii,
         forces=forces,
         reference_loads=reference,
@@ -323,3 +363,17 @@ def fit_edge_radius_table(
         sensor=sensor,
         n_presses=n_presses,
     )
+
+
+def _residual_correlation(standardised: np.ndarray, dof: int) -> np.ndarray:
+    """Correlation of (n_presses, n_forces, n_descriptors) residuals, shrunk to identity.
+
+    The sample covariance over `dof` degrees of freedom is pooled with an identity of weight
+    equal to the number of descriptors (the prior of independent errors), then normalised.
+    """
+    flat = standardised.reshape(standardised.shape[0], -1)
+    size = flat.shape[1]
+    pooled = (flat.T @ flat + np.eye(size)) / (dof + 1)
+    scale = np.sqrt(np.diag(pooled))
+    correlation = pooled / np.outer(scale, scale)
+    return (correlation + correlation.T) / 2
