@@ -378,3 +378,13 @@ def test_a_terminal_is_told_of_the_build_while_it_runs(monkeypatch, tmp_path):
     other = tmp_path / "other.json"
     assert main([*args, "--calibration", str(other), "--json"]) == 0
     assert terminal.getvalue() == f"{notice}built the pad calibration and saved it to {other}\n"
+
+
+def test_a_terminal_is_told_of_the_pad_calibration_the_procedure_builds(monkeypatch, capsys):
+    terminal = _Terminal()
+    monkeypatch.setattr("sys.stderr", terminal)
+    args = ["active", "stiffness", "--sensor", "capacitive4x4", "--forces", "2", "4", "--json"]
+    assert main(args) == 0
+    # no --calibration: the procedure calibrates the pad itself, and says so while it does
+    assert terminal.getvalue() == "building the pad calibration (this takes a while) ...\r\x1b[K"
+    assert json.loads(capsys.readouterr().out)["deformable"] is True  # the racquet ball

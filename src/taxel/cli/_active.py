@@ -8,6 +8,7 @@ result (SI units), steps included. Degrees and millimetres are converted here, a
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import sys
@@ -227,17 +228,19 @@ def _stiffness(arguments: argparse.Namespace) -> int:
                 f"{arguments.calibration} was made at {' '.join(f'{f:g}' for f in made)} N; "
                 "give those or another --calibration"
             )
-    result = measure_deformation(
-        "custom " + arguments.shape if custom else arguments.object,
-        sensor=arguments.sensor,
-        forces=tuple(arguments.forces),
-        calibration=calibration,
-        rng=arguments.seed,
-        shape=arguments.shape,
-        size=None if arguments.size_mm is None else arguments.size_mm * 1e-3,
-        youngs_modulus=None if arguments.modulus_mpa is None else arguments.modulus_mpa * 1e6,
-        poisson_ratio=arguments.poisson_ratio,
-    )
+    # with no --calibration the procedure calibrates the pad first, the long part
+    with building("pad calibration") if calibration is None else contextlib.nullcontext():
+        result = measure_deformation(
+            "custom " + arguments.shape if custom else arguments.object,
+            sensor=arguments.sensor,
+            forces=tuple(arguments.forces),
+            calibration=calibration,
+            rng=arguments.seed,
+            shape=arguments.shape,
+            size=None if arguments.size_mm is None else arguments.size_mm * 1e-3,
+            youngs_modulus=None if arguments.modulus_mpa is None else arguments.modulus_mpa * 1e6,
+            poisson_ratio=arguments.poisson_ratio,
+        )
     lines = [
         f"{'custom ' + arguments.shape if custom else arguments.object} pressed at "
         + ", ".join(f"{force:g}" for force in result.forces)
