@@ -132,12 +132,12 @@ def test_recognize_presses_within_the_finger_s_limit(capsys, small_files):
     # photoelastic64's finger presses at most 12.8 N: refused before a library is built
     assert main(["active", "recognize", "--object", "washer", "--sensor", "photoelastic64"]) == 2
     assert capsys.readouterr().err == (
-        "taxel active: error: --force 15: the finger with photoelastic64 presses at most 12.8 N"
+        "taxel active recognize: error: --force 15: the finger with photoelastic64 presses at most 12.8 N"
         " (its full-scale pressure over a quarter of its area); give --force of at most 12.8\n"
     )
     assert main(["active", "recognize", "--object", "coin", "--library", library, "--force", "10"])
     assert capsys.readouterr().err == (
-        f"taxel active: error: --force 10: the --library {library} was made with 15 N; give "
+        f"taxel active recognize: error: --force 10: the --library {library} was made with 15 N; give "
         "that or another --library\n"
     )
 
@@ -184,10 +184,11 @@ def test_a_wrong_or_deeply_nested_file_names_its_flag(capsys, tmp_path, procedur
     deep = tmp_path / "deep.json"
     deep.write_text("[" * 100_000 + "]" * 100_000)  # the JSON parser's recursion limit
     assert main(["active", *procedure, flag, str(other)]) == 2
-    assert capsys.readouterr().err == f"taxel active: error: {flag} {str(other)!r} is not {what}\n"
+    program = f"taxel active {procedure[0]}"
+    assert capsys.readouterr().err == f"{program}: error: {flag} {str(other)!r} is not {what}\n"
     assert main(["active", *procedure, flag, str(deep)]) == 2
     assert capsys.readouterr().err == (
-        f"taxel active: error: {flag} {str(deep)!r} is nested too deeply to be {what}\n"
+        f"{program}: error: {flag} {str(deep)!r} is nested too deeply to be {what}\n"
     )
 
 
@@ -284,7 +285,7 @@ def test_edge_radius_presses_at_the_given_forces(capsys, small_files, tmp_path):
     args = ["active", "edge-radius", "--radius-mm", "3", "--forces", "8", "30"]
     assert main([*args, "--table", str(table)]) == 2
     assert capsys.readouterr().err == (
-        f"taxel active: error: --forces 8 30: the --table {table} was made with 12 39 N; "
+        f"taxel active edge-radius: error: --forces 8 30: the --table {table} was made with 12 39 N; "
         "give those or another --table\n"
     )
     made = tmp_path / "t830.json"
@@ -299,7 +300,7 @@ def test_stiffness_refuses_a_pad_calibration_made_at_other_forces(capsys, small_
     pad = small_files / "pad.json"  # made at 0.5, 12 and 39 N
     assert main(["active", "stiffness", "--forces", "10", "30", "--calibration", str(pad)]) == 2
     assert capsys.readouterr().err == (
-        f"taxel active: error: --forces 10 30: the --calibration {pad} was made at 12 39 N; "
+        f"taxel active stiffness: error: --forces 10 30: the --calibration {pad} was made at 12 39 N; "
         "give those or another --calibration\n"
     )
 
@@ -324,7 +325,7 @@ def test_an_unwritable_table_is_found_before_the_build(capsys):
     # /proc takes no new file: found at once, not after building the table
     assert main(["active", "edge-radius", "--radius-mm", "2", "--table", "/proc/t.json"]) == 2
     assert capsys.readouterr().err == (
-        "taxel active: error: --table /proc/t.json cannot be written (No such file or directory)\n"
+        "taxel active edge-radius: error: --table /proc/t.json cannot be written (No such file or directory)\n"
     )
 
 
@@ -334,7 +335,7 @@ def test_a_build_that_fails_leaves_one_line(capsys, tmp_path):
     args = ["active", "edge-radius", "--radius-mm", "3", "--sensor", "capacitive4x4"]
     assert main([*args, "--forces", "2", "4", "--table", str(table)]) == 2
     assert capsys.readouterr().err == (
-        "taxel active: error: `sensor` is too small for an edge cross-section: 4 x 4 taxels "
+        "taxel active edge-radius: error: `sensor` is too small for an edge cross-section: 4 x 4 taxels "
         "at 5 x 5 mm leave 0.0 mm clear of the border across the edge, and the section "
         "needs 14 mm\n"
     )
@@ -351,7 +352,9 @@ def test_a_procedure_that_fails_after_its_build_leaves_one_line(capsys, tmp_path
     captured = capsys.readouterr()
     assert captured.out == ""
     assert captured.err.count("\n") == 1
-    assert captured.err.startswith("taxel active: error: no object within the finger's reach")
+    assert captured.err.startswith(
+        "taxel active stiffness: error: no object within the finger's reach"
+    )
     assert pad.exists()
     assert main([*args, "--calibration", str(pad)]) == 0  # loaded: nothing on stderr
     assert capsys.readouterr().err == ""
@@ -371,7 +374,9 @@ def test_a_terminal_is_told_of_the_build_while_it_runs(monkeypatch, tmp_path):
     assert main([*args, *ball, "--calibration", str(pad)]) == 2
     # the notice, erased (carriage return, clear to the line's end) before the error
     notice = "building the pad calibration (this takes a while) ...\r\x1b[K"
-    assert terminal.getvalue().startswith(notice + "taxel active: error: no object within")
+    assert terminal.getvalue().startswith(
+        notice + "taxel active stiffness: error: no object within"
+    )
     assert terminal.getvalue().count("\n") == 1
     terminal.seek(0)
     terminal.truncate()

@@ -77,7 +77,9 @@ def test_fit_refuses_to_overwrite_unless_forced(folders, tmp_path, capsys):
     model_path.write_text("keep me")
     assert main(["texture", "fit", str(train), "--out", str(model_path)]) == 2
     error = capsys.readouterr().err
-    assert error == f"taxel texture: error: {model_path} exists; pass --overwrite to replace it\n"
+    assert (
+        error == f"taxel texture fit: error: {model_path} exists; pass --overwrite to replace it\n"
+    )
     assert model_path.read_text() == "keep me"
     assert main(["texture", "fit", str(train), "--out", str(model_path), "--overwrite"]) == 0
     assert TextureClassifier.load(model_path).n_neighbors == 1
@@ -225,7 +227,7 @@ def test_a_constant_recording_is_named(folders, tmp_path, capsys):
     good = test / "Coarse_F150_V-50mmps_1.csv"
     assert main(["texture", "classify", str(good), str(constant), "--model", str(model_path)]) == 2
     error = _one_line_error(capsys)
-    assert error.startswith(f"taxel texture: error: {constant}: ") and "constant" in error
+    assert error.startswith(f"taxel texture classify: error: {constant}: ") and "constant" in error
 
 
 def test_a_deeply_nested_model_is_refused(folders, tmp_path, capsys, monkeypatch):
@@ -235,11 +237,11 @@ def test_a_deeply_nested_model_is_refused(folders, tmp_path, capsys, monkeypatch
     recording = str(next(test.iterdir()))
     assert main(["texture", "classify", recording, "--model", str(deep)]) == 2
     assert _one_line_error(capsys) == (
-        f"taxel texture: error: --model {deep}: nested too deeply to be a texture classifier\n"
+        f"taxel texture classify: error: --model {deep}: nested too deeply to be a texture classifier\n"
     )
     # given as ./deep.json, which the loader reads (and names) as deep.json
     monkeypatch.chdir(tmp_path)
     assert main(["texture", "classify", recording, "--model", "./deep.json"]) == 2
     assert _one_line_error(capsys) == (
-        "taxel texture: error: --model deep.json: nested too deeply to be a texture classifier\n"
+        "taxel texture classify: error: --model deep.json: nested too deeply to be a texture classifier\n"
     )

@@ -57,6 +57,17 @@ def _build_parser() -> _Parser:
 _SINGLE_THREAD = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
 
 
+# where a command's own sub-command is stored (``taxel active edge-radius``)
+_SUBCOMMAND_DESTINATIONS = ("procedure", "texture_command")
+
+
+def _program(arguments: argparse.Namespace) -> str:
+    """The command as typed, as argparse names it in its own errors."""
+    words = ["taxel", arguments.command]
+    words += [getattr(arguments, d) for d in _SUBCOMMAND_DESTINATIONS if hasattr(arguments, d)]
+    return " ".join(words)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line and return its exit code.
 
@@ -89,7 +100,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 0
     except (CommandLineError, ValueError, TypeError, OSError) as error:
         message = str(error).splitlines()[0] if str(error) else type(error).__name__
-        sys.stderr.write(f"taxel {arguments.command}: error: {message}\n")
+        sys.stderr.write(f"{_program(arguments)}: error: {message}\n")
         return EXIT_USAGE
     except KeyboardInterrupt:
         sys.stderr.write("taxel: interrupted\n")
