@@ -132,13 +132,14 @@ def test_recognize_presses_within_the_finger_s_limit(capsys, small_files):
     # photoelastic64's finger presses at most 12.8 N: refused before a library is built
     assert main(["active", "recognize", "--object", "washer", "--sensor", "photoelastic64"]) == 2
     assert capsys.readouterr().err == (
-        "taxel active recognize: error: --force 15: the finger with photoelastic64 presses at most 12.8 N"
-        " (its full-scale pressure over a quarter of its area); give --force of at most 12.8\n"
+        "taxel active recognize: error: --force 15: the finger with photoelastic64 presses "
+        "at most 12.8 N (its full-scale pressure over a quarter of its area); give --force of "
+        "at most 12.8\n"
     )
     assert main(["active", "recognize", "--object", "coin", "--library", library, "--force", "10"])
     assert capsys.readouterr().err == (
-        f"taxel active recognize: error: --force 10: the --library {library} was made with 15 N; give "
-        "that or another --library\n"
+        f"taxel active recognize: error: --force 10: the --library {library} was made with "
+        "15 N; give that or another --library\n"
     )
 
 
@@ -285,8 +286,8 @@ def test_edge_radius_presses_at_the_given_forces(capsys, small_files, tmp_path):
     args = ["active", "edge-radius", "--radius-mm", "3", "--forces", "8", "30"]
     assert main([*args, "--table", str(table)]) == 2
     assert capsys.readouterr().err == (
-        f"taxel active edge-radius: error: --forces 8 30: the --table {table} was made with 12 39 N; "
-        "give those or another --table\n"
+        f"taxel active edge-radius: error: --forces 8 30: the --table {table} was made with "
+        "12 39 N; give those or another --table\n"
     )
     made = tmp_path / "t830.json"
     assert main([*args, "--table", str(made), "--seed", "1"]) == 0
@@ -300,8 +301,8 @@ def test_stiffness_refuses_a_pad_calibration_made_at_other_forces(capsys, small_
     pad = small_files / "pad.json"  # made at 0.5, 12 and 39 N
     assert main(["active", "stiffness", "--forces", "10", "30", "--calibration", str(pad)]) == 2
     assert capsys.readouterr().err == (
-        f"taxel active stiffness: error: --forces 10 30: the --calibration {pad} was made at 12 39 N; "
-        "give those or another --calibration\n"
+        f"taxel active stiffness: error: --forces 10 30: the --calibration {pad} was made at "
+        "12 39 N; give those or another --calibration\n"
     )
 
 
@@ -325,7 +326,8 @@ def test_an_unwritable_table_is_found_before_the_build(capsys):
     # /proc takes no new file: found at once, not after building the table
     assert main(["active", "edge-radius", "--radius-mm", "2", "--table", "/proc/t.json"]) == 2
     assert capsys.readouterr().err == (
-        "taxel active edge-radius: error: --table /proc/t.json cannot be written (No such file or directory)\n"
+        "taxel active edge-radius: error: --table /proc/t.json cannot be written "
+        "(No such file or directory)\n"
     )
 
 
@@ -335,9 +337,9 @@ def test_a_build_that_fails_leaves_one_line(capsys, tmp_path):
     args = ["active", "edge-radius", "--radius-mm", "3", "--sensor", "capacitive4x4"]
     assert main([*args, "--forces", "2", "4", "--table", str(table)]) == 2
     assert capsys.readouterr().err == (
-        "taxel active edge-radius: error: `sensor` is too small for an edge cross-section: 4 x 4 taxels "
-        "at 5 x 5 mm leave 0.0 mm clear of the border across the edge, and the section "
-        "needs 14 mm\n"
+        "taxel active edge-radius: error: `sensor` is too small for an edge cross-section: "
+        "4 x 4 taxels at 5 x 5 mm leave 0.0 mm clear of the border across the edge, and the "
+        "section needs 14 mm\n"
     )
     assert not table.exists()
 

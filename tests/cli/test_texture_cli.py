@@ -237,11 +237,13 @@ def test_a_deeply_nested_model_is_refused(folders, tmp_path, capsys, monkeypatch
     recording = str(next(test.iterdir()))
     assert main(["texture", "classify", recording, "--model", str(deep)]) == 2
     assert _one_line_error(capsys) == (
-        f"taxel texture classify: error: --model {deep}: nested too deeply to be a texture classifier\n"
+        f"taxel texture classify: error: --model {deep}: nested too deeply to be a texture "
+        "classifier\n"
     )
     # given as ./deep.json, which the loader reads (and names) as deep.json
     monkeypatch.chdir(tmp_path)
     assert main(["texture", "classify", recording, "--model", "./deep.json"]) == 2
     assert _one_line_error(capsys) == (
-        "taxel texture classify: error: --model deep.json: nested too deeply to be a texture classifier\n"
+        "taxel texture classify: error: --model deep.json: nested too deeply to be a "
+        "texture classifier\n"
     )
