@@ -83,10 +83,13 @@ def edge_section(quick: bool) -> str:
             radius, table=table, sensor=SENSOR, position=position, angle=angle, rng=rng
         )
         nearest = table.radii[np.argmin(np.abs(table.radii - radius))]
-        rows.append((radius, result.radius, result.nearest_radius == nearest))
+        rows.append(
+            (radius, result.radius, result.nearest_radius == nearest, result.radius_uncertainty)
+        )
     seconds = (time.perf_counter() - started) / n_trials
-    truth, estimate, hits = (np.array(column) for column in zip(*rows, strict=True))
+    truth, estimate, hits, uncertainty = (np.array(column) for column in zip(*rows, strict=True))
     error = estimate - truth
+    scores = np.abs(error) / uncertainty
     mae = float(np.abs(error).mean())
     rate = float(hits.mean())
     radii = ", ".join(f"{r * 1e3:g}" for r in table.radii)
@@ -105,6 +108,10 @@ def edge_section(quick: bool) -> str:
         f"| nearest table entry correct | **{rate:.1%}** | >= 95 % | {_met(rate >= 0.95)} |",
         f"| largest error | {np.abs(error).max() * 1e3:.3f} mm | | |",
         f"| mean error (bias) | {error.mean() * 1e3:+.3f} mm | | |",
+        f"| errors within 2 stated standard uncertainties | {np.mean(scores <= 2):.0%} | "
+        "95 % if the uncertainty is right | |",
+        f"| median of error / stated uncertainty | {np.median(scores):.2f} | "
+        "0.67 if the uncertainty is right | |",
         "",
         "| radius band [mm] | trials | mean absolute error [mm] |",
         "|---|---|---|",
