@@ -69,6 +69,14 @@ def test_fit_then_classify(folders, tmp_path, capsys):
         {"file": files[0], "predicted": "Coarse"},
         {"file": files[1], "predicted": "Ribbed"},
     ]
+    # a folder stands for the recordings in it; one without any is named
+    assert main(["texture", "classify", str(test), "--model", str(model_path)]) == 0
+    assert capsys.readouterr().out.splitlines() == lines
+    assert main(["texture", "classify", str(tmp_path), "--model", str(model_path)]) == 2
+    assert _one_line_error(capsys) == (
+        f"taxel texture classify: error: {tmp_path}: holds no FabricSlide recording "
+        "(<Fabric>_F*_V*mmps_*.csv)\n"
+    )
 
 
 def test_fit_refuses_to_overwrite_unless_forced(folders, tmp_path, capsys):

@@ -3,7 +3,8 @@
 ``taxel texture fit DIR... --out MODEL.json`` reads every FabricSlide recording in the
 folders (the fabric of each is in its file name), computes its spatial-frequency texture
 features and stores a nearest-neighbour model as JSON. ``taxel texture classify FILE...
---model MODEL.json`` prints the predicted fabric of each recording, computing its features
+--model MODEL.json`` prints the predicted fabric of each recording (a folder stands for
+the recordings in it), computing its features
 with the settings stored in the model. A model written before these settings existed
 (format version 1) holds none of them and gets the features of that time: "static"
 normalisation, no load decorrelation, per-taxel levels.
@@ -95,22 +96,27 @@ def _fit(arguments: argparse.Namespace) -> int:
 
 def _classify(arguments: argparse.Namespace) -> int:
     from taxel.active import TextureClassifier
+    from taxel.io import list_fabricslide_files
 
+    # a folder stands for the recordings in it, as for `fit`
+    files = [
+        found
+        for name in arguments.files
+        for found in (list_fabricslide_files(name) if Path(name).is_dir() else [Path(name)])
+    ]
     with reading("--model", arguments.model):
         model = TextureClassifier.load(arguments.model)
-    features = np.array(
-        [_features(Path(path), model.settings, "the model's segment") for path in arguments.files]
-    )
+    features = np.array([_features(path, model.settings, "the model's segment") for path in files])
     predictions = model.predict(features)
     if arguments.json:
         rows = [
             {"file": str(path), "predicted": str(label)}
-            for path, label in zip(arguments.files, predictions, strict=True)
+            for path, label in zip(files, predictions, strict=True)
         ]
         json.dump(rows, sys.stdout, indent=2)
         sys.stdout.write("\n")
     else:
-        for path, label in zip(arguments.files, predictions, strict=True):
+        for path, label in zip(files, predictions, strict=True):
             print(f"{path}\t{label}")
     return 0
 
@@ -181,7 +187,12 @@ def register(commands: Any) -> None:
         help="predict the fabric of recordings",
         description="Print the predicted fabric of each FabricSlide recording.",
     )
-    classify.add_argument("files", nargs="+", metavar="FILE", help="recordings to classify")
+    classify.add_argument(
+        "files",
+        nargs="+",
+        metavar="FILE",
+        help="recordings to classify, or folders of them (each recording in a folder)",
+    )
     classify.add_argument("--model", required=True, metavar="MODEL.json", help="fitted model")
     classify.add_argument("--json", action="store_true", help="print JSON instead of text")
     classify.set_defaults(handler=_classify)
