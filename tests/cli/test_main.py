@@ -44,6 +44,7 @@ def test_the_parser_s_names_are_the_library_s():
 
     assert sensor.PRESET_NAMES == _arguments.PRESET_NAMES
     assert mechanics.INDENTER_NAMES == _arguments.INDENTER_NAMES
+    assert mechanics.describe_indenters() == _arguments.INDENTER_DESCRIPTIONS
     assert active.NORMALIZATIONS == _arguments.NORMALIZATIONS
     assert active.MODEL_NAMES == _arguments.MODEL_NAMES
     assert tuple(active.DEFORMATION_OBJECTS) == _arguments.DEFORMATION_OBJECTS

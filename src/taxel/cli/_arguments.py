@@ -8,6 +8,7 @@ from collections.abc import Callable
 
 __all__ = [
     "DEFORMATION_OBJECTS",
+    "INDENTER_DESCRIPTIONS",
     "INDENTER_NAMES",
     "MODEL_NAMES",
     "NORMALIZATIONS",
@@ -22,8 +23,9 @@ __all__ = [
     "seed",
 ]
 
-# `taxel.sensor.PRESET_NAMES`, `taxel.mechanics.INDENTER_NAMES`, `taxel.active.NORMALIZATIONS`,
-# `taxel.active.MODEL_NAMES` and `taxel.active.DEFORMATION_OBJECTS`, written out so that
+# `taxel.sensor.PRESET_NAMES`, `taxel.mechanics.INDENTER_NAMES` (with what each is),
+# `taxel.active.NORMALIZATIONS`, `taxel.active.MODEL_NAMES` and
+# `taxel.active.DEFORMATION_OBJECTS`, written out so that
 # building the parser (``taxel --help``, and every command) does not import those layers,
 # whose SciPy dependencies take seconds to load; a test checks they agree.
 PRESET_NAMES = (
@@ -37,22 +39,24 @@ PRESET_NAMES = (
     "reflective8x8",
 )
 NORMALIZATIONS = ("static", "load")
-INDENTER_NAMES = (
-    "pen",
-    "sphere",
-    "edge",
-    "cylinder",
-    "punch",
-    "washer",
-    "can",
-    "box-edge",
-    "box-corner",
-    "slot",
-    "hole",
-    "foam",
-    "rasp",
-    "screen",
-)
+# what each indenter is, as `taxel.mechanics.describe_indenters` says
+INDENTER_DESCRIPTIONS = {
+    "pen": "ball-point pen tip, 0.7 mm across",
+    "sphere": "12.5 mm acrylic sphere",
+    "edge": "straight edge of radius 3.2 mm",
+    "cylinder": "short cylinder, 10 mm across",
+    "punch": "flat punch, 6 mm across",
+    "washer": "M8 washer (16 mm outside, 8.4 mm hole)",
+    "can": "rim of a drink can, 52 mm across, 1 mm lip radius",
+    "box-edge": "edge of a box (90 degrees), rounded to 0.5 mm",
+    "box-corner": "corner (vertex) of a box, edges rounded to 0.5 mm",
+    "slot": "plate with a 3 mm x 15 mm slot",
+    "hole": "plate with a 6 mm hole",
+    "foam": "stiff conductive foam",
+    "rasp": "teeth of a wood rasp",
+    "screen": "perforated metal screen, 4 mm holes",
+}
+INDENTER_NAMES = tuple(INDENTER_DESCRIPTIONS)
 
 MODEL_NAMES = ("washer", "coin", "key blank", "bolt head", "box corner", "pen", "can")
 DEFORMATION_OBJECTS = (

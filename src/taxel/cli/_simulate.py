@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from taxel.cli._arguments import (
+    INDENTER_DESCRIPTIONS,
     INDENTER_NAMES,
     PRESET_NAMES,
     choice,
@@ -204,7 +205,9 @@ def register(commands: Any) -> None:
         help="one raw frame of a preset sensor pressed by an object",
         description="Press a named object on a preset sensor with a given force and save "
         "the raw frame (.npy); optionally save the ground truth (.npz). "
-        f"Sensors: {', '.join(PRESET_NAMES)}. Objects: {', '.join(INDENTER_NAMES)}.",
+        f"Sensors: {', '.join(PRESET_NAMES)}. Objects: "
+        + "; ".join(f"{name}: {what}" for name, what in INDENTER_DESCRIPTIONS.items())
+        + ".",
     )
     parser.add_argument(
         "--sensor", type=preset, required=True, metavar="PRESET", help="sensor preset"

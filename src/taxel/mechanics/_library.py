@@ -16,7 +16,11 @@ from taxel.mechanics._textures import PerforatedScreen, StiffFoam, WoodRasp
 __all__ = ["INDENTER_NAMES", "describe_indenters", "make_indenter"]
 
 _LIBRARY: dict[str, tuple[Callable[..., Indenter], dict[str, Any], str]] = {
-    "pen": (Cone, {"tip_radius": 0.35e-3, "half_angle": np.radians(20)}, "ball-point pen tip"),
+    "pen": (
+        Cone,
+        {"tip_radius": 0.35e-3, "half_angle": np.radians(20)},
+        "ball-point pen tip, 0.7 mm across",
+    ),
     "sphere": (Sphere, {"radius": 6.25e-3}, "12.5 mm acrylic sphere"),
     "edge": (Cylinder, {"radius": 3.2e-3}, "straight edge of radius 3.2 mm"),
     "cylinder": (Cylinder, {"radius": 5e-3, "length": 20e-3}, "short cylinder, 10 mm across"),
@@ -26,10 +30,26 @@ _LIBRARY: dict[str, tuple[Callable[..., Indenter], dict[str, Any], str]] = {
         {"outer_radius": 8e-3, "inner_radius": 4.2e-3, "edge_radius": 0.2e-3},
         "M8 washer (16 mm outside, 8.4 mm hole)",
     ),
-    "can": (CanRim, {"rim_radius": 26e-3, "lip_radius": 1.0e-3}, "rim of a drink can"),
-    "box-edge": (BoxEdge, {"edge_radius": 0.5e-3}, "edge of a box (90 degrees)"),
-    "box-corner": (BoxCorner, {"edge_radius": 0.5e-3}, "corner (vertex) of a box"),
-    "slot": (SlottedPlate, {"slot_width": 3e-3, "slot_length": 15e-3}, "plate with a slot"),
+    "can": (
+        CanRim,
+        {"rim_radius": 26e-3, "lip_radius": 1.0e-3},
+        "rim of a drink can, 52 mm across, 1 mm lip radius",
+    ),
+    "box-edge": (
+        BoxEdge,
+        {"edge_radius": 0.5e-3},
+        "edge of a box (90 degrees), rounded to 0.5 mm",
+    ),
+    "box-corner": (
+        BoxCorner,
+        {"edge_radius": 0.5e-3},
+        "corner (vertex) of a box, edges rounded to 0.5 mm",
+    ),
+    "slot": (
+        SlottedPlate,
+        {"slot_width": 3e-3, "slot_length": 15e-3},
+        "plate with a 3 mm x 15 mm slot",
+    ),
     "hole": (PlateWithHole, {"hole_radius": 3e-3}, "plate with a 6 mm hole"),
     "foam": (StiffFoam, {}, "stiff conductive foam"),
     "rasp": (WoodRasp, {}, "teeth of a wood rasp"),
