@@ -94,6 +94,19 @@ def test_plate_with_hole_and_plate_with_slot(vhdta):
     assert slot.length_m == pytest.approx(15e-3, rel=0.15)
 
 
+def test_hole_too_near_the_border_is_not_read_again_from_its_floor(vhdta):
+    # a 2.5 mm hole in a gently crowned plate whose wall to the array's border (16.5 mm) is
+    # 0.4 mm, under the cover's 1 mm depth: refused at the 25 % level; the contact
+    # threshold's basin is its floor, read against the hole's own flanks as a 1.4 mm hole
+    # clear of the border
+    shape = {"hole_radius": 2.5e-3, "crown_radius": 0.39}
+    frame = _press(vhdta, "hole", 111.0, position=(13.6e-3, 9.9e-3), **shape)
+    assert not extract(frame.raw, vhdta).holes.present
+    # with its wall twice as thick (1.5 taxels more), the hole is found
+    frame = _press(vhdta, "hole", 111.0, position=(13.2e-3, 9.9e-3), **shape)
+    assert extract(frame.raw, vhdta).holes.count == 1
+
+
 def test_rasp_is_a_texture(vhdta):
     features = extract(_press(vhdta, "rasp", 40.0).raw, vhdta)
     assert features.contact_type == "surface"

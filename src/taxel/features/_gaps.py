@@ -14,7 +14,8 @@ smoothed image (50 % and 25 % of the contrast, then the contact threshold), so t
 in a dome-shaped contact (a gently convex plate) is enclosed at some level even where its
 surroundings press less than the contact's peak. The highest level is tried first: a slot
 whose floor is not equally deep all along is one basin there, and the pieces it may break
-into at lower levels are then already explained.
+into at lower levels are then already explained. A gap refused there as too near the
+array's border explains the smaller basins of its floor in the same way.
 """
 
 from __future__ import annotations
@@ -66,6 +67,13 @@ _SHEET_EVENNESS = 0.5
 # into the array's edge.
 _BORDER_TAXELS = 2.0
 _GROW = np.ones((7, 7), np.uint8)
+# A gap too near the border to be judged (see `_BORDER_TAXELS`) is still a gap: a basin it
+# holds at a lower level is read again, but it is that gap only if it reads as large as
+# it (at least half its area: the half level's reading does not depend on the level the
+# basin was found at). A smaller reading is the gap's floor, whose ring lies on the gap's
+# own flanks, lower than the contact around it: read alone, it seems a small hole clear
+# of the border.
+_SAME_GAP = 0.5
 # A basin's wall is read up to this many taxels from it.
 _REACH = 6
 
@@ -234,10 +242,13 @@ def _half_levels(window: np.ndarray, wall: np.ndarray, baseline: float, half: fl
 
 def _measure(
     prepared: Prepared, contour: np.ndarray, level: float, textured: bool
-) -> tuple[Hole | Slot | None, tuple[slice, slice], np.ndarray, float] | None:
+) -> tuple[Hole | Slot | bool, tuple[slice, slice], np.ndarray, float] | None:
     """Decide whether one basin holds a hole or a slot, and measure it.
 
-    `textured`: the contact is a texture (see `_FACE`).
+    `textured`: the contact is a texture (see `_FACE`). Returns None when the basin holds
+    no gap; else the hole or slot, or else whether the gap was refused as too near the
+    array's border only (True; False for a gap of no hole's or slot's shape), with where it
+    was read, the gap's region there and the evenness of its wall.
     """
     shape = prepared.image.shape
     left, top, width, height = cv2.boundingRect(contour)
@@ -301,7 +312,7 @@ def _measure(
     area = moments["m00"]
     where = (slice(r0, r1), slice(c0, c1))
     if area < MIN_GAP_AREA:
-        return None, where, region, evenness
+        return False, where, region, evenness
     mean_r, mean_c = moments["m01"] / area + origin_r, moments["m10"] / area + origin_c
     var_y = (moments["mu02"] / area + 1 / 12) * row_pitch**2
     var_x = (moments["mu20"] / area + 1 / 12) * col_pitch**2
@@ -327,7 +338,7 @@ def _measure(
     slot_width = gap_area / length
     span = 2.0 * (inradius + 0.5) * pitch
     if length < SLOT_ELONGATION * slot_width or gap_area < _SLOT_PARALLEL * length * span:
-        return None, where, region, evenness
+        return border or _clearance(box, r0, c0, shape) < edge, where, region, evenness
     if border:
         on_border = int(
             region[0].sum() * (r0 == 0)
@@ -336,7 +347,7 @@ def _measure(
             + region[:, -1].sum() * (c1 == cols)
         )
         if on_border * pitch > SLOT_BORDER_WIDTHS * slot_width:
-            return None, where, region, evenness
+            return False, where, region, evenness
     slot = Slot((mean_r, mean_c), centre_m, angle, slot_width, length, bool(border))
     return slot, where, region, evenness
 
@@ -366,18 +377,33 @@ def gaps_core(
     if not prepared.present:
         return holes, slots, explained
     marked = False  # whether `explained` holds a gap yet
+    # the gaps refused as too near the border (numbered from 1), once there is one, and
+    # their areas (see `_SAME_GAP`)
+    refused: np.ndarray | None = None
+    refused_areas = [0.0]
     for contour, level in basins(prepared):
-        if marked:  # a basin already explained (at a higher level) is done
+        within = 0  # the refused gap the basin lies in, if any
+        if marked or refused is not None:  # a basin explained at a higher level is done
             moments = cv2.moments(contour)
             if moments["m00"] > 0:
                 col, row = moments["m10"] / moments["m00"], moments["m01"] / moments["m00"]
-                if explained[int(round(row)), int(round(col))]:
+                at = int(round(row)), int(round(col))
+                if explained[at]:
                     continue
+                if refused is not None:
+                    within = int(refused[at])
         measured = _measure(prepared, contour, level, textured)
         if measured is None:
             continue
         found, where, region, even = measured
-        if found is None:
+        if within and cv2.countNonZero(region) < _SAME_GAP * refused_areas[within]:
+            continue  # the floor of a gap refused at a higher level
+        if isinstance(found, bool):
+            if found:  # too near the border: keep it, for the basins it holds
+                if refused is None:
+                    refused = np.zeros(prepared.image.shape, np.int32)
+                refused[where][cv2.dilate(region, _GROW) > 0] = len(refused_areas)
+                refused_areas.append(float(cv2.countNonZero(region)))
             continue
         if isinstance(found, Hole):
             holes.append(found)
