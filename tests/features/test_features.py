@@ -35,7 +35,8 @@ from taxel.features import (
     fit_line,
     texture_measures,
 )
-from taxel.features._image import component_outlines
+from taxel.features._gaps import gaps_core
+from taxel.features._image import component_outlines, prepare
 from taxel.frames import make_pose
 from taxel.sensor import make_sensor
 
@@ -188,6 +189,30 @@ def test_hole_where_a_face_presses_weakly_toward_a_corner():
     assert report.count == 1
     assert report.items[0].radius_m == pytest.approx(4e-3, rel=0.1)
     assert report.items[0].center_m == pytest.approx((18.5e-3, 18.5e-3), abs=0.6e-3)
+
+
+def _rough_face_with_holes(centres, radius=4.0):
+    """A 96 x 96 face pressing evenly (0.8-1, rough) with holes of `radius` taxels."""
+    y, x = np.mgrid[:96, :96].astype(float)
+    field = 0.8 + 0.2 * np.random.default_rng(3).random((96, 96))
+    for row, col in centres:
+        field[np.hypot(x - col, y - row) <= radius] = 0.0
+    return prepare(ndimage.gaussian_filter(field, 1.0, mode="nearest"), 1e-3)
+
+
+def test_perforated_sheet_holes_lie_beside_each_other():
+    # in a texture, equal holes are a perforated sheet when punched on a grid (1.6
+    # diameters apart here); three as equal but 5 diameters and more apart are valleys
+    grid = [(30.0, 30.0), (30.0, 43.0), (43.0, 30.0), (43.0, 43.0)]
+    holes, _, _ = gaps_core(_rough_face_with_holes(grid), textured=True)
+    assert len(holes) == 4
+    assert all(hole.radius_m == pytest.approx(4e-3, rel=0.1) for hole in holes)
+    scattered = [(20.0, 20.0), (20.0, 60.0), (66.0, 36.0)]
+    holes, _, _ = gaps_core(_rough_face_with_holes(scattered), textured=True)
+    assert not holes
+    # not a texture: each is a hole
+    holes, _, _ = gaps_core(_rough_face_with_holes(scattered))
+    assert len(holes) == 3
 
 
 @pytest.mark.parametrize(

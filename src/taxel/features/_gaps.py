@@ -62,6 +62,12 @@ _SLOT_PARALLEL = 0.6
 _SHEET_HOLES = 3
 _SHEET_SPREAD = 0.15
 _SHEET_EVENNESS = 0.5
+# A sheet's holes are punched on a grid, each beside its neighbours: the 3 or more holes
+# must each have another within 3 of their mean diameters, centre to centre (a web at most
+# twice as wide as a hole, 9 % open area on a square grid; perforated sheets have more,
+# and a sheet seen in part may lack a hole, which puts a neighbour 2 pitches away). The
+# valleys of a texture that pass for holes lie scattered, farther apart.
+_SHEET_PITCH = 3.0
 # A hole must be seen all round: a gap closer to the array's border than the cover is deep
 # (and than 2 taxels) cannot be told from a notch, since its wall on that side is blurred
 # into the array's edge.
@@ -357,6 +363,12 @@ def _perforated(holes: list[Hole], evenness: list[float]) -> bool:
     if len(holes) < _SHEET_HOLES:
         return False
     radii = np.array([hole.radius_m for hole in holes])
+    centres = np.array([hole.center_m for hole in holes])
+    apart = np.hypot(*(centres[:, None, :] - centres[None, :, :]).transpose(2, 0, 1))
+    np.fill_diagonal(apart, np.inf)
+    beside = apart.min(axis=1) <= _SHEET_PITCH * 2.0 * float(radii.mean())
+    if np.count_nonzero(beside) < _SHEET_HOLES:
+        return False
     middle = len(holes) // 2
     even = float(np.partition(np.array(evenness), middle)[middle])
     return float(radii.std()) <= _SHEET_SPREAD * float(radii.mean()) and even >= _SHEET_EVENNESS
