@@ -77,9 +77,15 @@ def slot_corner_normal(context: DemoContext) -> Experiment:
     ax = scatter.add_subplot(projection="3d")
     ax.scatter(*(points * 1e3).T, color="C1", label="contact points")
     centre = points.mean(axis=0) * 1e3
+    # the normal drawn half as long as the probes' spread, in a cube that holds it all, so
+    # that right angles look right
+    half = max(float(np.ptp(points, axis=0).max()) * 1e3 / 2, 1.0)
     ax.quiver(
-        *centre, *(np.asarray(plane.estimate.normal) * 30), color="C0", label="fitted normal"
+        *centre, *(np.asarray(plane.estimate.normal) * half), color="C0", label="fitted normal"
     )
+    for set_limits, middle in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre, strict=True):
+        set_limits(middle - 1.2 * half, middle + 1.2 * half)
+    ax.set_box_aspect((1, 1, 1))
     ax.set_xlabel("x [mm]", fontsize=7)
     ax.set_ylabel("y [mm]", fontsize=7)
     ax.set_zlabel("z [mm]", fontsize=7)

@@ -119,14 +119,16 @@ def plot_reconstruction(
     lcurve.loglog(curve.residual_norm, curve.solution_norm, color="0.3")
     for result, label, marker in ((regularized, "GCV", "o"), (corner, "L-curve corner", "s")):
         lcurve.loglog(result.residual_norm, result.solution_norm, marker, label=label)
-    lcurve.set_xlabel("residual norm |A x - b| [Pa]")
-    lcurve.set_ylabel(f"solution seminorm |L x| (order {order})")
+    reading_unit = {"stress": "Pa", "strain": "strain", "displacement": "m"}[spec.quantity]
+    lcurve.set_xlabel(f"residual norm |A x - b| [{reading_unit}]")
+    # L: identity, or differences between neighbouring load cells: pressures all the same
+    lcurve.set_ylabel(f"solution seminorm |L x| [Pa] (order {order})")
     lcurve.set_title("L-curve", fontsize=9)
     lcurve.legend(fontsize=8)
     gcv_axis.loglog(curve.regularization, curve.gcv, color="0.3")
     gcv_axis.axvline(regularized.regularization, color="C0", linestyle="--", label="GCV minimum")
     gcv_axis.axvline(corner.regularization, color="C1", linestyle=":", label="L-curve corner")
-    gcv_axis.set_xlabel("lambda (relative)")
+    gcv_axis.set_xlabel("lambda (relative: 1 weighs the penalty like the data's largest term)")
     gcv_axis.set_ylabel("GCV function")
     gcv_axis.set_title("generalized cross-validation", fontsize=9)
     gcv_axis.legend(fontsize=8)
