@@ -36,8 +36,9 @@ class _Layout(NamedTuple):
     window: np.ndarray  # Hann window, float32, the image's shape
     first: np.ndarray  # per bin: flat index of its real part in the packed spectrum
     second: np.ndarray  # per bin: of its imaginary part (0, the mean, zeroed, if it has none)
-    real_bins: np.ndarray  # bins that are their own conjugate (no imaginary part)
+    share: np.ndarray  # per bin: 1, or 0.5 for a bin that is its own conjugate; float64
     frequency: np.ndarray  # per bin [cycles/m], float32
+    shared_frequency: np.ndarray  # `frequency` times `share`, float32
     starts: np.ndarray  # where each octave band begins in the bins' order
     empty: np.ndarray | None  # bands holding no bin (tiny images), or None
 
@@ -89,12 +90,15 @@ def _layout(shape: tuple[int, int], pitch: tuple[float, float]) -> _Layout:
     empty = starts[1:] == starts[:-1]
     second = second[order]
     window = np.outer(np.hanning(rows), np.hanning(cols)).astype(np.float32)
+    share = np.where((second == 0) & (bins[order] != 0), 0.5, 1.0)
+    frequency = frequency[order].astype(np.float32)
     layout = _Layout(
         window,
         first[order],
         second,
-        np.flatnonzero((second == 0) & (bins[order] != 0)),
-        frequency[order].astype(np.float32),
+        share,
+        frequency,
+        (frequency * share).astype(np.float32),  # (exact: halving a float32)
         starts,
         empty if empty.any() else None,
     )
@@ -144,9 +148,10 @@ def _band_powers(squares: np.ndarray, layout: _Layout) -> tuple[np.ndarray, floa
     sums are float64. Sums that overflow are inf (no warning).
     """
     squares[0] = 0.0  # the mean; also the missing imaginary part of the real bins
-    power = np.take(squares, layout.first)
-    cv2.add(power, np.take(squares, layout.second), dst=power)
+    power = squares.take(layout.first)
+    cv2.add(power, squares.take(layout.second), dst=power)
     strongest = float(layout.frequency[cv2.minMaxLoc(power.reshape(1, -1))[3][0]])
-    power[layout.real_bins] *= 0.5
-    sums = np.add.reduceat(power.astype(np.float64), layout.starts)
-    return sums, float(sums.sum()), dot(power, layout.frequency), strongest
+    # the self-conjugate bins' halves, exact (in float64, and for the frequency-weighted
+    # total, on the frequencies: the products are the same)
+    sums = np.add.reduceat(np.multiply(power, layout.share, dtype=np.float64), layout.starts)
+    return sums, float(sums.sum()), dot(power, layout.shared_frequency), strongest
