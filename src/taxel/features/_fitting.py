@@ -219,7 +219,7 @@ def _centred_moments(
     (m_uu, m_vv, m_uv, m_uz, m_vz, m_zz) as plain floats.
     """
     _, _, total, terms = points
-    u, v, z = terms
+    u, v, z = terms[0], terms[1], terms[2]  # (indexed: unpacking an array costs more)
     np.multiply(u, u, out=z)
     z += v * v
     weighted = terms if weight is None else terms * weight

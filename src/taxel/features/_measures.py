@@ -76,7 +76,8 @@ def band_fits(prepared: Prepared, main: np.ndarray) -> tuple[LineFit, CircleFit,
     window = contact_window(prepared)
     _, weighted = region_moments(prepared, main)  # the moments of the same weights
     main = main[window]
-    x, y = cv2.findNonZero(main).reshape(-1, 2).T.astype(float, order="C")
+    points = cv2.findNonZero(main).reshape(-1, 2).T.astype(float, order="C")
+    x, y = points[0], points[1]  # (indexed: unpacking an array costs more)
     y += window[0].start
     weight = prepared.smooth[window][main.view(bool)] - np.float32(prepared.baseline)
     np.maximum(weight, 1e-12, out=weight)

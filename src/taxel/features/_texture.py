@@ -171,8 +171,8 @@ def _ring_test(
     and the test's answers.
     """
     centres = ((points[:, 1] + pad) * stride + (points[:, 0] + pad))[:, None]
-    heights = np.take(padded, centres[:, 0])
-    ring = np.take(padded, centres + ring_offsets)
+    heights = padded.take(centres[:, 0])
+    ring = padded.take(centres + ring_offsets)
     return centres, heights, heights > np.maximum.reduce(ring, axis=1) + margin
 
 
@@ -256,7 +256,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     # principal curvatures by central differences one sigma each way, on the points that
     # stand above their ring
     heights = heights[high]
-    near = np.take(padded, centres[high] + near_offsets)
+    near = padded.take(centres[high] + near_offsets)
     near -= heights[:, None]  # E, W, S, N, SE, SW, NE, NW
     fxx, fyy = near[:, 0] + near[:, 1], near[:, 2] + near[:, 3]
     fxy = 0.25 * (near[:, 4] - near[:, 5] - near[:, 6] + near[:, 7])
