@@ -300,9 +300,8 @@ def fit_edge_radius_table(
     changes smoothly with the radius, fitted by least squares over all presses. The
     descriptor's spread is the residual standard deviation (floored at 0.1 % of its range
     over the table). The correlation of the standardised residuals over all forces and
-    descriptors is shrunk toward independence as if the table held as many more presses as
-    there are descriptors with uncorrelated errors, so a table of few presses, whose sample
-    correlation has low rank, still gives a positive uncertainty.
+    descriptors is pooled with one press's worth of independent errors, so a table of few
+    presses, whose sample correlation has low rank, still gives a positive uncertainty.
     """
     radius_per_press = as_finite_array("radii", radii, ndim=1)
     sections = [list(pair) for pair in sections]
@@ -368,8 +367,8 @@ def fit_edge_radius_table(
 def _residual_correlation(standardised: np.ndarray, dof: int) -> np.ndarray:
     """Correlation of (n_presses, n_forces, n_descriptors) residuals, shrunk to identity.
 
-    The sample covariance over `dof` degrees of freedom is pooled with an identity of weight
-    equal to the number of descriptors (the prior of independent errors), then normalised.
+    The sample covariance over `dof` degrees of freedom is pooled with an identity of the
+    weight of one more degree of freedom (independent errors), then normalised.
     """
     flat = standardised.reshape(standardised.shape[0], -1)
     size = flat.shape[1]
