@@ -37,7 +37,9 @@ border (the object continues there; within the cover's depth or blur of it the c
 rim presses less) nor the wall of a hole or slot (reported as such). A *band*'s centre line
 and direction are the weighted principal axis of its taxels (weights: signal above the
 baseline), and its circle is the weighted (Taubin) circle of the same taxels, so both edges
-and the ridge between them all count.
+and the ridge between them all count. Taxels farther than 0.75 band thicknesses from the
+fitted curve are a spur (what a glass scratch leaves where it crosses the band) and the
+band is refitted without them.
 
 Given a sensor description (`taxel.sensor.TactileSensor`), the rules use its cover: the
 half-maximum width of its response to a point load (the *blur*, from the sensor's own
@@ -294,7 +296,7 @@ def shape_core(
     if n_holes or n_slots:
         return result("surface", 1.0, 0.0, "face with a hole or a slot")
     if elongation >= _BAND:
-        line, circle, length = band_fits(prepared, main)
+        line, circle, length = band_fits(prepared, main, thickness)
         bow = sagitta(circle.radius_m, length)
         if bow >= _MIN_SAGITTA and circle.rms_m < line.rms_m:
             if thickness > _RIM_WIDTH * circle.radius_m:
