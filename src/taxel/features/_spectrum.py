@@ -36,9 +36,9 @@ class _Layout(NamedTuple):
     window: np.ndarray  # Hann window, float32, the image's shape
     first: np.ndarray  # per bin: flat index of its real part in the packed spectrum
     second: np.ndarray  # per bin: of its imaginary part (0, the mean, zeroed, if it has none)
-    share: np.ndarray  # per bin: 1, or 0.5 for a bin that is its own conjugate; float64
+    halved: np.ndarray  # positions of the bins that are their own conjugate (but the mean)
     frequency: np.ndarray  # per bin [cycles/m], float32
-    shared_frequency: np.ndarray  # `frequency` times `share`, float32
+    shared_frequency: np.ndarray  # `frequency`, halved at `halved`, float32
     starts: np.ndarray  # where each octave band begins in the bins' order
     empty: np.ndarray | None  # bands holding no bin (tiny images), or None
 
@@ -96,7 +96,7 @@ def _layout(shape: tuple[int, int], pitch: tuple[float, float]) -> _Layout:
         window,
         first[order],
         second,
-        share,
+        np.flatnonzero(share != 1.0),
         frequency,
         (frequency * share).astype(np.float32),  # (exact: halving a float32)
         starts,
@@ -153,5 +153,7 @@ def _band_powers(squares: np.ndarray, layout: _Layout) -> tuple[np.ndarray, floa
     strongest = float(layout.frequency[cv2.minMaxLoc(power.reshape(1, -1))[3][0]])
     # the self-conjugate bins' halves, exact (in float64, and for the frequency-weighted
     # total, on the frequencies: the products are the same)
-    sums = np.add.reduceat(np.multiply(power, layout.share, dtype=np.float64), layout.starts)
+    halved = power.astype(np.float64)
+    halved[layout.halved] *= 0.5
+    sums = np.add.reduceat(halved, layout.starts)
     return sums, float(sums.sum()), dot(power, layout.shared_frequency), strongest
