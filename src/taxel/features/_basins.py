@@ -7,11 +7,11 @@ with cheap tests on each outline alone.
 Regions reaching out of the contact's box are dropped unseen when they cannot be basins,
 which is the usual case (see `_window`): every taxel above the level lies in the box, and
 a region out of the box meets the array's border over a whole side of the array and more,
-too long a run for a slot's end. On a large array the outlines are then traced in the
-rows of the box grown by 1 taxel alone: the rows just above and below the box (where they
-are not the array's border) are non-contact and joined to the rest of the array, so the
-regions reaching them are among those dropped, and every other region lies in the box
-whole, so its outline is the same there.
+too long a run for a slot's end. On a large array the outlines are then traced in the box
+grown by 1 taxel alone: every region reaching out of the box passes through that ring of
+taxels (where it is not the array's border), so each of its pieces in the grown box
+reaches out of the box too and is dropped, and every other region lies in the box whole,
+so its outline is the same there (and the outlines come in the same raster order).
 """
 
 from __future__ import annotations
@@ -79,20 +79,23 @@ def _shortest_frame_run(box: tuple[int, int, int, int], shape: tuple[int, int]) 
 
 
 def _window(prepared: Prepared, limit: float) -> tuple[slice, slice] | None:
-    """The rows of the contact's box grown by 1, if regions out of the box are no basins.
+    """The contact's box grown by 1 (within the array), if regions out of it are no basins.
 
     A region out of the box meets the border over at least `_shortest_frame_run` taxels;
     more than sqrt(2.5 limit) + 2 (plus a taxel against rounding) is more than a slot's
     end of at most half the array (area <= limit) can meet: then no such region is a
-    basin. None otherwise. (Whole rows: they lie in memory in one piece, which NumPy
-    works faster than a narrower window.)
+    basin. None otherwise. (The outlines are traced in a copy of the window, so a narrow
+    one saves the tracing its taxels.)
     """
     rows, cols = prepared.image.shape
     box = contact_box(prepared)
     if _shortest_frame_run(box, (rows, cols)) <= math.sqrt(SLOT_ELONGATION * limit) + 3:
         return None
-    _, y0, _, height = box
-    return slice(max(y0 - 1, 0), min(y0 + height + 1, rows)), slice(0, cols)
+    x0, y0, width, height = box
+    return (
+        slice(max(y0 - 1, 0), min(y0 + height + 1, rows)),
+        slice(max(x0 - 1, 0), min(x0 + width + 1, cols)),
+    )
 
 
 def basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
@@ -122,7 +125,7 @@ def basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
     if (
         window is not None
         and rows * cols > WHOLE_IMAGE
-        and window[0].stop - window[0].start < rows
+        and (window[0].stop - window[0].start) * (window[1].stop - window[1].start) < rows * cols
     ):
         crop = window
     for level in levels:
