@@ -103,11 +103,17 @@ def diameter_test(
         borderValue=0,
     )
     # the mask holds 0 and 1: a crossing is where a sample differs from the next one
-    crossed = np.bitwise_xor(touched[:, 1:], touched[:, :-1])
+    crossed = cv2.bitwise_xor(touched[:, 1:], touched[:, :-1])
     middle = steps.size // 2
-    before = np.add.reduce(crossed[:, :middle], axis=1)
-    after = np.add.reduce(crossed[:, middle:], axis=1)
-    return bool(np.count_nonzero((before == 2) & (after == 2) & (touched[:, middle] == 0)))
+    before = cv2.reduce(crossed[:, :middle], 1, cv2.REDUCE_SUM, dtype=cv2.CV_32S).ravel()
+    after = cv2.reduce(crossed[:, middle:], 1, cv2.REDUCE_SUM, dtype=cv2.CV_32S).ravel()
+    # (16 diameters: read as plain numbers)
+    return any(
+        first_half == 2 and second_half == 2 and centre == 0
+        for first_half, second_half, centre in zip(
+            before.tolist(), after.tolist(), touched[:, middle].tolist(), strict=True
+        )
+    )
 
 
 def outline_contours(prepared: Prepared) -> tuple[np.ndarray, ...]:
