@@ -19,6 +19,7 @@ __all__ = [
     "fit_circle",
     "fit_line",
     "fit_line_and_circle",
+    "line_circle_and_distances",
     "line_through",
     "mean",
     "std",
@@ -278,6 +279,20 @@ def fit_line_and_circle(
     `known`: the weighted points' image moments m00, m10 and m01, when at hand (see
     `_from_known`; with `weight`).
     """
+    line, circle, _ = line_circle_and_distances(x, y, weight, known)
+    return line, circle
+
+
+def line_circle_and_distances(
+    x: np.ndarray,
+    y: np.ndarray,
+    weight: np.ndarray | None = None,
+    known: Mapping[str, float] | None = None,
+) -> tuple[LineFit, CircleFit, np.ndarray | None]:
+    """`fit_line_and_circle`, and each point's squared distance from the circle.
+
+    The distances are those the circle's RMS is made of (None when no circle fits).
+    """
     n = int(x.size)
     if known is None or weight is None:
         points = centred(x, y, weight)
@@ -292,7 +307,7 @@ def fit_line_and_circle(
     line = LineFit(angle, offset, math.sqrt(smallest), n)
     solution = _taubin(*moments)
     if solution is None:
-        return line, CircleFit((math.nan, math.nan), math.inf, math.inf, n)
+        return line, CircleFit((math.nan, math.nan), math.inf, math.inf, n), None
     a, b, radius = solution
     # squared distances from the circle, (sqrt((u - a)^2 + (v - b)^2) - radius)^2, in place
     residual = terms[0] - a
@@ -305,7 +320,7 @@ def fit_line_and_circle(
     residual *= residual
     total_squares = float(np.add.reduce(residual)) if weight is None else dot(weight, residual)
     rms = math.sqrt(total_squares / total)
-    return line, CircleFit((mean_x + a, mean_y + b), radius, rms, n)
+    return line, CircleFit((mean_x + a, mean_y + b), radius, rms, n), residual
 
 
 def circle_fit_core(x: np.ndarray, y: np.ndarray) -> CircleFit:

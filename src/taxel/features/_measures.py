@@ -8,7 +8,12 @@ import cv2
 import numpy as np
 
 from taxel.features._contact import Contact, region_moments
-from taxel.features._fitting import CircleFit, LineFit, fit_line_and_circle
+from taxel.features._fitting import (
+    CircleFit,
+    LineFit,
+    fit_line_and_circle,
+    line_circle_and_distances,
+)
 from taxel.features._image import Prepared
 from taxel.features._moments import binary_moments
 from taxel.features._outline import lobes
@@ -97,8 +102,11 @@ def band_fits(
     weight = prepared.smooth[window][main.view(bool)] - np.float32(prepared.baseline)
     np.maximum(weight, 1e-12, out=weight)
     weight = weight.astype(float)
-    line, circle = fit_line_and_circle(x, y, weight, weighted)
-    line, circle, x, y = _without_spurs(x, y, weight, line, circle, thickness)
+    line, circle, squared = line_circle_and_distances(x, y, weight, weighted)
+    reach = _SPUR_DISTANCE * thickness
+    # the circle's squared distances are at hand: a band without spurs costs one look
+    if squared is None or cv2.minMaxLoc(squared)[1] > reach * reach:
+        line, circle, x, y = _without_spurs(x, y, weight, line, circle, reach)
     along = math.cos(line.angle_rad) * x
     along += math.sin(line.angle_rad) * y
     return line, circle, float(np.maximum.reduce(along) - np.minimum.reduce(along)) + 1.0
@@ -126,10 +134,12 @@ def _without_spurs(
     weight: np.ndarray,
     line: LineFit,
     circle: CircleFit,
-    thickness: float,
+    reach: float,
 ) -> tuple[LineFit, CircleFit, np.ndarray, np.ndarray]:
-    """The band's fits refitted without its spurs (see `_SPUR_DISTANCE`), and the points kept."""
-    reach = _SPUR_DISTANCE * thickness
+    """The band's fits refitted without its points beyond `reach`, and the points kept.
+
+    See `_SPUR_DISTANCE`; `reach` is that many band thicknesses [taxels].
+    """
     kept = None
     for _ in range(_SPUR_PASSES):
         # every taxel is measured against each new fit: one cut by a poor first fit returns
