@@ -143,3 +143,15 @@ def test_a_force_beyond_the_models_is_refused_as_the_flag(tmp_path, capsys):
     assert stop.value.code == 2
     assert "argument --force: must be at most 1e+06, got 1e200" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_simulate_warns_when_the_sensing_plane_is_pressed_beyond_full_scale(tmp_path, capsys):
+    # a 12 N ball of 6.25 mm on vhdta128 loads its sensing plane to 815 kPa, twice the
+    # 413.7 kPa full scale; 3 N to 349 kPa, within it
+    argv = ["simulate", "--sensor", "vhdta128", "--object", "sphere", "--out"]
+    assert main([*argv, str(tmp_path / "hard.npy"), "--force", "12"]) == 0
+    err = capsys.readouterr().err
+    assert "warning: the taxels feel up to 814.8 kPa" in err
+    assert "full scale of 413.7 kPa" in err
+    assert main([*argv, str(tmp_path / "light.npy"), "--force", "3"]) == 0
+    assert capsys.readouterr().err == ""

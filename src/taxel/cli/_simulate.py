@@ -123,6 +123,25 @@ def _check_lowest_point_on_sensor(
         )
 
 
+def _warn_if_saturated(frame: Any, sensor: Any) -> None:
+    """Warn (stderr) when the sensing plane is pressed beyond the sensor's full scale.
+
+    A flat plate at `full_scale` loads the sensing plane with that normal stress; a contact
+    that loads it harder drives its taxels past every level a calibration covers, and what
+    they read there saturates or is clipped: a reconstruction then recovers too little force.
+    """
+    if frame.fields is None:
+        return
+    felt = float(np.max(-frame.fields.stress))
+    if felt > sensor.full_scale:
+        sys.stderr.write(
+            f"taxel simulate: warning: the taxels feel up to {felt / 1e3:.4g} kPa at the "
+            f"sensing depth, above {sensor.name}'s full scale of {sensor.full_scale / 1e3:.4g} "
+            "kPa: their readings saturate, and a reconstruction recovers too little force "
+            "(press more lightly, or with a blunter object)\n"
+        )
+
+
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.mechanics import make_indenter
     from taxel.sensor import make_sensor
@@ -179,6 +198,7 @@ def _run(arguments: argparse.Namespace) -> int:
         "raw_file": str(out),
     }
     _write_both(out, raw, truth, None if truth is None else _truth(frame, sensor, meta))
+    _warn_if_saturated(frame, sensor)
     noise = "noise-free" if arguments.seed is None else f"noise seed {arguments.seed}"
     sys.stdout.write(
         f"wrote {out}: {sensor.name} raw frame {' x '.join(map(str, raw.shape))} "
