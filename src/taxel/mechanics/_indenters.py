@@ -36,7 +36,7 @@ class Sphere(Indenter):
     Examples
     --------
     >>> round(float(Sphere(10e-3).local_heights(np.array(3e-3), np.array(4e-3))), 9)
-    0.00133975
+    0.001339746
     """
 
     radius: float

@@ -178,7 +178,7 @@ def strain_from_detector_voltage(voltage: Any, unloaded_voltage: Any) -> np.ndar
 
     Examples
     --------
-    >>> float(strain_from_detector_voltage(0.0125, 0.01))  # C grew by 1.25: dh/h0 = 0.2
+    >>> round(float(strain_from_detector_voltage(0.0125, 0.01)), 12)  # C grew by 1.25: dh/h0 = 0.2
     -0.2
     """
     voltage = as_finite_array("voltage", voltage)

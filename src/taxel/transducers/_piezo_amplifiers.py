@@ -235,7 +235,7 @@ def current_amplifier_output(
     --------
     >>> ramp = np.array([0.0, -1e3, -2e3, -2e3])  # -1 MPa/s for 2 ms, then held
     >>> v = current_amplifier_output(ramp, 1e-3, area=1e-6, feedback_resistance=1e9)
-    >>> np.round(v, 6).tolist()
+    >>> (np.round(v, 6) + 0.0).tolist()  # (+ 0.0: no negative zeros)
     [0.0, 0.033, 0.033, 0.0]
     """
     stress, time_step = _check_series(stress, time_step)
