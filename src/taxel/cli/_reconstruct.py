@@ -11,7 +11,8 @@ from pathlib import Path
 import numpy as np
 
 from taxel.cli._arguments import integer_in, positive
-from taxel.cli._files import reading, writing
+from taxel.cli._files import writing
+from taxel.cli._reconstruct_input import load_readings
 
 __all__ = ["register"]
 
@@ -25,7 +26,6 @@ INVERTIBLE_PRESETS = (
     "piezo8x8",
     "reflective8x8",
 )
-LARGEST_PRESSURE = 1e12  # [Pa]
 
 
 def _rule_or_lambda(text: str) -> str | float:
@@ -56,45 +56,6 @@ def _order(arguments: argparse.Namespace) -> int:
     return 0 if arguments.order is None else arguments.order
 
 
-def _load_frame(path: Path) -> np.ndarray:
-    """The readings of FRAME, a .npy file of real numbers (NaN marks dead taxels)."""
-    from taxel.io import read_array
-
-    if not path.is_file():
-        what = "a folder" if path.is_dir() else "not an existing file"
-        raise ValueError(f"`FRAME` must be an existing .npy file; {str(path)!r} is {what}")
-    try:
-        frame = read_array(path)
-    except ValueError as error:
-        raise ValueError(f"`FRAME` {error}") from None
-    if not (np.issubdtype(frame.dtype, np.integer) or np.issubdtype(frame.dtype, np.floating)):
-        raise ValueError(f"`FRAME` {str(path)!r} holds {frame.dtype} values, not real numbers")
-    return frame
-
-
-def _check_range(path: Path, pressure: np.ndarray) -> None:
-    """Refuse readings beyond any contact pressure (the solvers' squares would overflow)."""
-    finite = pressure[np.isfinite(pressure)]  # NaN marks a dead taxel
-    largest = float(np.abs(finite).max()) if finite.size else 0.0
-    if largest > LARGEST_PRESSURE:
-        raise ValueError(
-            f"`FRAME` {str(path)!r} holds pressures up to {largest:.3g} Pa, beyond any contact "
-            f"(at most {LARGEST_PRESSURE:.0e} Pa, well past the strength of any material)"
-        )
-
-
-def _check_archive(path: Path) -> None:
-    """Refuse a --calibration that is no zip archive (numpy would offer to unpickle it)."""
-    if not path.is_file():
-        return  # Calibration.load names what is missing
-    with path.open("rb") as handle:
-        if handle.read(4) != b"PK\x03\x04":
-            raise ValueError(
-                f"--calibration {path}: not a taxel calibration file (not an .npz archive; "
-                "`taxel calibrate` makes one)"
-            )
-
-
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.reconstruction import (
         FORWARD_MODEL_PRESETS,
@@ -113,26 +74,7 @@ def _run(arguments: argparse.Namespace) -> int:
     check_new_file(
         arguments.out, suffix=".npy", overwrite=arguments.overwrite, name="--out", inputs=(path,)
     )
-    frame = _load_frame(path)
-    stored = frame.dtype
-    if arguments.calibration is not None:
-        from taxel.sensor import Calibration
-
-        _check_archive(Path(arguments.calibration))
-        with reading("--calibration", arguments.calibration):
-            calibration = Calibration.load(arguments.calibration)
-        if frame.shape[-2:] != tuple(calibration.shape):
-            raise ValueError(
-                f"`FRAME` {str(path)!r} holds frames of {frame.shape[-2:]}, but --calibration "
-                f"is of {calibration.sensor_name}, whose frames are {tuple(calibration.shape)}"
-            )
-        frame = calibration.felt_pressure(frame)
-    elif np.issubdtype(stored, np.integer):
-        raise ValueError(
-            f"`FRAME` {str(path)!r} holds raw codes ({stored}); give the sensor's "
-            "calibration with --calibration CAL.npz (made by `taxel calibrate`)"
-        )
-    _check_range(path, frame)
+    frame = load_readings(path, arguments.calibration)
     spec = forward_model_preset(arguments.sensor, oversampling=arguments.oversampling)
     result = reconstruct(
         frame,
