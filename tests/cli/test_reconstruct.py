@@ -403,4 +403,42 @@ def test_the_help_lists_every_sensor_the_reconstruction_inverts(capsys):
         main(["reconstruct", "--help"])
     text = " ".join(capsys.readouterr().out.split())
     assert "the frame's sensor: " + ", ".join(FORWARD_MODEL_PRESETS) in text
-    assert "in the readings' unit (Pa for calibrated readings)" in text
+    assert "noise std of one calibrated reading, in its unit (Pa; m for reflective8x8)" in text
+
+
+def test_a_displacement_sensor_is_calibrated_to_metres(tmp_path, capsys):
+    # reflective8x8 senses the surface displacement: its calibrated frame was fed in Pa to
+    # a forward model in metres, and 0.05 N came back as 5.2e5 N (support), 5.7e5 N
+    raw, calibration = tmp_path / "rf.npy", tmp_path / "c.npz"
+    sensor = ["--sensor", "reflective8x8"]
+    simulate = ["simulate", *sensor, "--object", "sphere", "--force", "0.05", "--seed", "2"]
+    assert main([*simulate, "--out", str(raw)]) == 0
+    assert main(["calibrate", *sensor, "--out", str(calibration)]) == 0
+    capsys.readouterr()
+    for method in ("support", "tikhonov"):
+        out = tmp_path / f"{method}.npy"
+        arguments = ["reconstruct", str(raw), *sensor, "--calibration", str(calibration)]
+        assert main([*arguments, "--method", method, "--out", str(out), "--json"]) == 0
+        summary = json.loads(capsys.readouterr().out)
+        assert summary["normal_force"] == pytest.approx(0.05, rel=0.02), method
+        assert summary["residual_norm"] < 1e-4  # metres
+        assert np.nansum(np.load(out)) * 9e-6 == pytest.approx(0.05, rel=0.02)
+
+
+def test_raw_codes_of_a_sensor_of_load_changes_are_refused_with_why(tmp_path, capsys):
+    raw = tmp_path / "piezo.npy"
+    np.save(raw, np.full((8, 8), 2048, np.int64))
+    out = tmp_path / "p.npy"
+    arguments = ["reconstruct", str(raw), "--sensor", "piezo8x8", "--out", str(out)]
+    assert main(arguments) == 2
+    assert capsys.readouterr().err == (
+        "taxel reconstruct: error: --sensor piezo8x8 senses only changes of load (stress): "
+        "no static calibration maps its raw codes (`taxel calibrate` cannot make one); give "
+        f"FRAME {str(raw)!r} as the stress change each taxel felt [Pa], in real numbers\n"
+    )
+    stress = tmp_path / "stress.npy"  # the stress change, in real numbers, is inverted
+    truth = np.zeros((8, 8))
+    truth[3:5, 3:5] = 20e3
+    np.save(stress, forward_operator("piezo8x8").apply(truth))
+    assert main(["reconstruct", str(stress), "--sensor", "piezo8x8", "--out", str(out)]) == 0
+    assert np.load(out).sum() == pytest.approx(truth.sum(), rel=0.02)

@@ -74,7 +74,7 @@ def _run(arguments: argparse.Namespace) -> int:
     check_new_file(
         arguments.out, suffix=".npy", overwrite=arguments.overwrite, name="--out", inputs=(path,)
     )
-    frame = load_readings(path, arguments.calibration)
+    frame = load_readings(path, arguments.sensor, arguments.calibration)
     spec = forward_model_preset(arguments.sensor, oversampling=arguments.oversampling)
     result = reconstruct(
         frame,
@@ -155,7 +155,10 @@ def register(commands: argparse._SubParsersAction) -> None:
         "(a .npy frame, or a batch of frames) with regularization chosen automatically.",
     )
     parser.add_argument(
-        "frame", metavar="FRAME.npy", help="calibrated readings (or raw codes with --calibration)"
+        "frame",
+        metavar="FRAME.npy",
+        help="raw codes with --calibration, or calibrated readings: the pressure felt at the "
+        "taxels' depth [Pa], or for reflective8x8 the surface displacement [m]",
     )
     parser.add_argument(
         "--sensor",
@@ -192,7 +195,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         type=positive,
         default=None,
         metavar="SIGMA",
-        help="noise std of one reading, in the readings' unit (Pa for calibrated readings); "
+        help="noise std of one calibrated reading, in its unit (Pa; m for reflective8x8); "
         "estimated from the frame if omitted",
     )
     parser.add_argument(
@@ -206,7 +209,8 @@ def register(commands: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--calibration",
         metavar="CAL.npz",
-        help="per-taxel calibration of raw frames (from `taxel calibrate`)",
+        help="per-taxel calibration of raw frames (from `taxel calibrate`); piezo8x8 has "
+        "none (it senses only changes of load): give it the stress change [Pa]",
     )
     parser.add_argument("--overwrite", action="store_true", help="replace an existing --out")
     parser.add_argument("--json", action="store_true", help="print a JSON summary")

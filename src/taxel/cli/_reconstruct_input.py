@@ -3,21 +3,40 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from taxel.cli._files import reading
+
+if TYPE_CHECKING:
+    from taxel.sensor import TactileSensor
 
 __all__ = ["LARGEST_PRESSURE", "load_readings"]
 
 LARGEST_PRESSURE = 1e12  # [Pa]
 
 
-def load_readings(path: Path, calibration_path: str | None) -> np.ndarray:
-    """The readings of FRAME, calibrated with --calibration when given; checked in range."""
+def load_readings(path: Path, sensor_name: str, calibration_path: str | None) -> np.ndarray:
+    """The readings of FRAME in the forward model's quantity, checked in range.
+
+    Raw codes go through --calibration (`taxel.reconstruction.calibrated_readings`): to the
+    pressure felt at depth [Pa], or for a displacement sensor to the surface displacement
+    [m]. Real numbers without a calibration are taken as readings already.
+    """
+    from taxel.sensor import make_sensor
+
+    sensor = make_sensor(sensor_name)
     frame = _load_frame(path)
     stored = frame.dtype
+    if sensor.is_dynamic and (calibration_path is not None or np.issubdtype(stored, np.integer)):
+        raise ValueError(
+            f"--sensor {sensor_name} senses only changes of load ({sensor.quantity}): no "
+            "static calibration maps its raw codes (`taxel calibrate` cannot make one); give "
+            f"FRAME {str(path)!r} as the stress change each taxel felt [Pa], in real numbers"
+        )
     if calibration_path is not None:
+        from taxel.reconstruction import calibrated_readings
         from taxel.sensor import Calibration
 
         _check_archive(Path(calibration_path))
@@ -28,13 +47,13 @@ def load_readings(path: Path, calibration_path: str | None) -> np.ndarray:
                 f"`FRAME` {str(path)!r} holds frames of {frame.shape[-2:]}, but --calibration "
                 f"is of {calibration.sensor_name}, whose frames are {tuple(calibration.shape)}"
             )
-        frame = calibration.felt_pressure(frame)
+        frame = calibrated_readings(frame, calibration, sensor)
     elif np.issubdtype(stored, np.integer):
         raise ValueError(
             f"`FRAME` {str(path)!r} holds raw codes ({stored}); give the sensor's "
             "calibration with --calibration CAL.npz (made by `taxel calibrate`)"
         )
-    _check_range(path, frame)
+    _check_range(path, frame, sensor)
     return frame
 
 
@@ -54,14 +73,29 @@ def _load_frame(path: Path) -> np.ndarray:
     return frame
 
 
-def _check_range(path: Path, pressure: np.ndarray) -> None:
-    """Refuse readings beyond any contact pressure (the solvers' squares would overflow)."""
-    finite = pressure[np.isfinite(pressure)]  # NaN marks a dead taxel
+def _check_range(path: Path, readings: np.ndarray, sensor: TactileSensor) -> None:
+    """Refuse readings beyond any contact (the solvers' squares would overflow)."""
+    from taxel.reconstruction import spec_from_sensor
+
+    finite = readings[np.isfinite(readings)]  # NaN marks a dead taxel
     largest = float(np.abs(finite).max()) if finite.size else 0.0
-    if largest > LARGEST_PRESSURE:
+    spec = spec_from_sensor(sensor)
+    if spec.quantity == "stress":
+        if largest > LARGEST_PRESSURE:
+            raise ValueError(
+                f"`FRAME` {str(path)!r} holds pressures up to {largest:.3g} Pa, beyond any "
+                f"contact (at most {LARGEST_PRESSURE:.0e} Pa, well past the strength of any "
+                "material)"
+            )
+        return
+    # a displacement [m] or strain [-]: the reading of a plate at that pressure
+    limit = LARGEST_PRESSURE * float(spec.full_scale or 0.0) / sensor.full_scale
+    unit = " m" if spec.quantity == "displacement" else ""
+    if largest > limit:
         raise ValueError(
-            f"`FRAME` {str(path)!r} holds pressures up to {largest:.3g} Pa, beyond any contact "
-            f"(at most {LARGEST_PRESSURE:.0e} Pa, well past the strength of any material)"
+            f"`FRAME` {str(path)!r} holds {spec.quantity} readings up to {largest:.3g}{unit}, "
+            f"beyond any contact (at most {limit:.3g}{unit}, that of a plate pressing "
+            f"{LARGEST_PRESSURE:.0e} Pa, well past the strength of any material)"
         )
 
 

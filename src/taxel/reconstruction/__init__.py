@@ -5,8 +5,8 @@ regularization. Everything here is built once per sensor and reused frame after 
 
 Forward model of a sensor
     ForwardModelSpec, forward_model_preset, FORWARD_MODEL_PRESETS, as_forward_model_spec,
-    spec_from_sensor,
-    forward_operator, SensorOperator
+    spec_from_sensor, forward_operator, SensorOperator,
+    calibrated_readings (raw frames through a calibration, in the forward model's quantity)
 Solvers (class: setup once, then solve frame after frame; function: one call)
     TikhonovSolver (Tikhonov of order 0, 1, 2 and truncated SVD),
     ADMMSolver (non-negative Tikhonov, non-negative total variation),
@@ -31,6 +31,7 @@ penalty is lambda^2 |A|^2/|L|^2 |L x|^2) or, for total variation, mu [Pa];
 """
 
 from taxel.reconstruction._admm import ADMMSolver
+from taxel.reconstruction._calibrated import calibrated_readings
 from taxel.reconstruction._choice import RULES, ParameterCurve, lcurve_curvature
 from taxel.reconstruction._frames import LARGEST_REGULARIZATION
 from taxel.reconstruction._operator import SensorOperator, forward_operator
@@ -68,6 +69,7 @@ __all__ = [
     "SupportSolver",
     "TikhonovSolver",
     "as_forward_model_spec",
+    "calibrated_readings",
     "estimate_noise",
     "estimate_noise_level",
     "forward_model_preset",

@@ -24,6 +24,9 @@ __all__ = [
     "ForwardModelSpec",
     "as_forward_model_spec",
     "forward_model_preset",
+    "plate_reading",
+    "reading_quantity",
+    "spec_from_sensor",
 ]
 
 QUANTITIES: tuple[str, ...] = ("stress", "strain", "displacement")
@@ -187,6 +190,28 @@ _READING = {
 }
 
 
+def reading_quantity(sensor: TactileSensor) -> str:
+    """What a calibrated reading of `sensor` is for the inverse problem: a `QUANTITIES` entry."""
+    reading = _READING.get(sensor.quantity, sensor.quantity)
+    if sensor.quantity == "strain" and sensor.cell_modulus is not None:
+        reading = "stress"  # the cell's strain follows the stress at its depth
+    return reading
+
+
+def plate_reading(sensor: TactileSensor) -> np.ndarray:
+    """Each taxel's reading per pascal of a flat plate over the whole array [reading unit / Pa].
+
+    The reading is `reading_quantity`: the stress felt at depth (-sigma_z, [Pa / Pa]), the
+    strain eps_z [1 / Pa] or the surface displacement u_z [m / Pa], from the sensor's own
+    cover model. A calibration maps raw codes to the plate pressure that gives them; times
+    this, to what the forward model predicts.
+    """
+    quantity = reading_quantity(sensor)
+    plate = np.ones(sensor.load_grid.shape)
+    value = sensor.fields(plate).get(quantity)
+    return np.clip(-value, 0.0, None) if quantity == "stress" else value
+
+
 def spec_from_sensor(sensor: TactileSensor, **changes: Any) -> ForwardModelSpec:
     """The forward model of a `taxel.sensor.TactileSensor`, with optional changes.
 
@@ -217,9 +242,10 @@ def spec_from_sensor(sensor: TactileSensor, **changes: Any) -> ForwardModelSpec:
     row_pitch, col_pitch = geometry.taxel_pitch
     if geometry.layout == "hexagonal" or not np.isclose(row_pitch, col_pitch):
         raise ValueError(f"`sensor` {sensor.name!r} must be a square array, got {geometry.layout}")
-    reading = _READING[quantity]
-    if quantity == "strain" and sensor.cell_modulus is not None:
-        reading = "stress"
+    reading = reading_quantity(sensor)
+    full_scale = sensor.full_scale
+    if reading != "stress":  # in the reading's own unit: the largest reading of a full plate
+        full_scale *= float(np.abs(plate_reading(sensor)).max())
     fields: dict[str, Any] = {
         "shape": geometry.shape,
         "taxel_pitch": col_pitch,
@@ -227,7 +253,7 @@ def spec_from_sensor(sensor: TactileSensor, **changes: Any) -> ForwardModelSpec:
         "depth": sensor.cover.depth,
         "thickness": sensor.cover.thickness,
         "quantity": reading,
-        "full_scale": sensor.full_scale,
+        "full_scale": full_scale,
     }
     return ForwardModelSpec(**(fields | changes))
 
