@@ -442,3 +442,23 @@ def test_raw_codes_of_a_sensor_of_load_changes_are_refused_with_why(tmp_path, ca
     np.save(stress, forward_operator("piezo8x8").apply(truth))
     assert main(["reconstruct", str(stress), "--sensor", "piezo8x8", "--out", str(out)]) == 0
     assert np.load(out).sum() == pytest.approx(truth.sum(), rel=0.02)
+
+
+def test_support_reports_the_lambda_given_and_its_own_stage_s(frame_file, tmp_path, capsys):
+    # `--method support --lambda 0.01` printed the support stage's GCV lambda as "(given)"
+    out = tmp_path / "p.npy"
+    arguments = ["reconstruct", str(frame_file), "--sensor", "resistive16", "--out", str(out)]
+    arguments += ["--method", "support", "--lambda", "0.01", "--overwrite"]
+    assert main(arguments) == 0
+    first_line = capsys.readouterr().out.splitlines()[0]
+    assert first_line.startswith("support (order 0), lambda = 0.01 (given); support ridge lambda")
+    assert first_line.endswith("(gcv)")
+    assert main([*arguments, "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["rule"] == "given" and summary["regularization"] == 0.01
+    assert summary["support_rule"] == "gcv"
+    assert 0 < summary["support_regularization"] != 0.01
+    assert f"support ridge lambda = {summary['support_regularization']:.4g} (gcv)" in first_line
+    assert main([*arguments[:-5], "--json", "--overwrite"]) == 0  # tikhonov: one stage
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["support_regularization"] is None and summary["support_rule"] is None

@@ -117,11 +117,13 @@ def test_nothing_to_find_and_too_much_to_find():
     solver = SupportSolver(SMALL)
     empty = solver.solve(np.zeros(SMALL.shape), regularization=0.1)
     assert not empty.support.any() and np.all(empty.pressure == 0.0)
+    assert empty.first_regularization == 0.1 and empty.regularization == 0.0
     assert empty.message.startswith("support of 0 cells")
     truth = np.full(SMALL.shape, 50e3)
     frame = solver.operator.apply(truth) + np.random.default_rng(7).normal(0, 1e3, SMALL.shape)
     spread = SupportSolver(SMALL, max_cells=20).solve(frame)
     assert spread.support is None and "more than 20 cells" in spread.message
+    assert spread.regularization == spread.first_regularization > 0  # the non-negative solve
     assert spread.pressure.min() >= 0
 
 
@@ -180,3 +182,19 @@ def test_a_batch_has_a_centroid_per_frame_and_nan_without_force():
     assert result.centroid_m.shape == (2, 2)
     np.testing.assert_allclose(result.centroid_m[0] / SMALL.load_pitch, [3.0, -3.0], atol=1e-3)
     assert np.isnan(result.centroid_m[1]).all()
+
+
+def test_the_first_stage_keeps_the_lambda_its_rule_gave():
+    # the result's lambda is the support stage's (GCV); the first stage's, chosen by the
+    # rule the caller named, was lost: a given 0.01 read back as "given" 0.0046
+    truth = np.zeros(SMALL.shape)
+    truth[3:5, 3:5] = 60e3
+    solver = solver_for(SMALL, method="support")
+    frame = solver.operator.apply(truth) + np.random.default_rng(8).normal(0, 1e3, SMALL.shape)
+    given = solver.solve(frame, regularization=0.01)
+    assert given.rule == "given" and given.first_regularization == 0.01
+    assert given.support.any() and given.regularization != 0.01
+    chosen = solver.solve(frame, regularization="gcv")
+    gcv = solver.linear.solve(frame, regularization="gcv").regularization
+    assert chosen.first_regularization == pytest.approx(gcv, rel=1e-12)
+    assert reconstruct(frame, SMALL).first_regularization is None  # one stage: tikhonov

@@ -85,12 +85,16 @@ def _run(arguments: argparse.Namespace) -> int:
         noise_level=arguments.noise_level,
     )
     centre = result.centroid_m
+    second, second_rule = _support_stage(result)
+    first = result.regularization if second is None else result.first_regularization
     summary = {
         "sensor": arguments.sensor,
         "method": result.method,
         "order": result.order,
         "rule": result.rule,
-        "regularization": _finite_or_none(result.regularization),
+        "regularization": _finite_or_none(first),
+        "support_regularization": None if second is None else _finite_or_none(second),
+        "support_rule": second_rule,
         "residual_norm": _finite_or_none(result.residual_norm),
         "solution_norm": _finite_or_none(result.solution_norm),
         "normal_force": _finite_or_none(result.normal_force),
@@ -105,7 +109,7 @@ def _run(arguments: argparse.Namespace) -> int:
     else:
         text = (
             f"{result.method} (order {result.order}), lambda = "
-            f"{_format(result.regularization)} ({result.rule})\n"
+            f"{_format(first)} ({result.rule}){_support_text(second, second_rule)}\n"
             f"residual norm {_format(result.residual_norm)}, "
             f"solution norm {_format(result.solution_norm)}, "
             f"force {_format(result.normal_force)} N{_centre_text(centre)}\n"
@@ -116,6 +120,33 @@ def _run(arguments: argparse.Namespace) -> int:
         write_frame(arguments.out, result.pressure, overwrite=arguments.overwrite, inputs=(path,))
     sys.stdout.write(text)
     return 0
+
+
+def _support_stage(result) -> tuple[float | None, str | None]:
+    """(lambda, how chosen) of the second stage of method support; (None, None) for others.
+
+    The ridge on the support is chosen by GCV ("gcv"); when the support is too large the
+    non-negative solve at the first stage's lambda stands in ("first stage"); with no cell
+    found pressed there is no second stage ("none", lambda 0).
+    """
+    if result.first_regularization is None:
+        return None, None
+    if result.support is None:
+        return float(result.regularization), "first stage"
+    if not result.support.any():
+        return 0.0, "none"
+    return float(result.regularization), "gcv"
+
+
+def _support_text(second: float | None, rule: str | None) -> str:
+    """'; support ridge lambda = .. (gcv)' for method support, else ''."""
+    if second is None:
+        return ""
+    if rule == "none":
+        return "; no cell found pressed, no support stage"
+    if rule == "first stage":
+        return "; support too large: non-negative solve at the first stage's lambda"
+    return f"; support ridge lambda = {_format(second)} ({rule})"
 
 
 def _finite_or_none(value):

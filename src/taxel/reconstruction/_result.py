@@ -22,9 +22,11 @@ class ReconstructionResult:
     regularization : float or numpy.ndarray
         The lambda used (per frame for a batch); relative units: lambda = 1 weighs the
         penalty like the largest singular value of the data term. For total variation, the
-        weight mu [Pa] of the total variation.
+        weight mu [Pa] of the total variation. For method "support", the lambda of its
+        second stage (the ridge on the support, chosen by GCV; see `SupportSolver.solve`).
     rule : str
-        How lambda was chosen: "gcv", "lcurve", "discrepancy", or "given".
+        How lambda was chosen: "gcv", "lcurve", "discrepancy", or "given"; for method
+        "support", how `first_regularization` was.
     method : str
         "tikhonov", "tsvd", "nonneg", "tv", "support" or "naive".
     order : int
@@ -49,6 +51,9 @@ class ReconstructionResult:
         How the solve ended.
     support : numpy.ndarray of bool or None
         The load cells allowed to carry load (method "support"), else None.
+    first_regularization : float or None
+        Method "support": the lambda of its first stage (the Tikhonov estimate whose
+        support is fitted), given or chosen by `rule`; None for the other methods.
     """
 
     pressure: np.ndarray = field(repr=False)
@@ -66,6 +71,7 @@ class ReconstructionResult:
     residual: float = 0.0
     message: str = "direct solve"
     support: np.ndarray | None = field(default=None, repr=False)
+    first_regularization: float | None = None
 
     @property
     def normal_force(self) -> float | np.ndarray:

@@ -176,9 +176,12 @@ class SupportSolver:
     ) -> ReconstructionResult:
         """Recover non-negative pressure on the support of a first estimate, one frame.
 
-        Parameters as `TikhonovSolver.solve`; they govern the first stage. The returned
+        Parameters as `TikhonovSolver.solve`; they govern the first stage, whose lambda
+        the result holds as `first_regularization` (chosen by its `rule`). The returned
         `regularization` is lambda2 of the second stage (relative units, identity
-        penalty), and `support` the cells allowed to carry load.
+        penalty, chosen by GCV; lambda1 when the support is too large and the
+        non-negative solve at lambda1 stands in, `support` None then; 0 when no cell is
+        found pressed), and `support` the cells allowed to carry load.
         """
         frame = one_frame(frame, self.spec, "support")
         rule, _ = parse_regularization(regularization)
@@ -315,4 +318,5 @@ class SupportSolver:
             residual=0.0,
             message=message,
             support=support,
+            first_regularization=float(first.regularization),
         )
