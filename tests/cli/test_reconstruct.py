@@ -102,6 +102,16 @@ def test_a_given_lambda_and_oversampling(frame_file, tmp_path, capsys):
         (["--sensor", "resistive16", "--lambda", "oracle"], "--lambda: must be one of gcv"),
         (["--sensor", "resistive16", "--lambda", "inf"], "--lambda: must be a number from 0 to"),
         (["--sensor", "resistive16", "--noise-level", "0"], "--noise-level: must be > 0"),
+        (  # was taken: a 2 N contact read 0.02 N
+            ["--sensor", "resistive16", "--noise-level", "1e300"],
+            "--noise-level must be below the full-scale reading of resistive16 (2e+05 Pa), "
+            "got 1e+300",
+        ),
+        (
+            ["--sensor", "resistive16", "--noise-level", "2e5", "--method", "support"],
+            "--noise-level must be below the full-scale reading of resistive16 (2e+05 Pa), "
+            "got 200000",
+        ),
         (["--sensor", "resistive16", "--method", "tv", "--order", "2"], "got --order 2"),
     ],
 )

@@ -98,3 +98,24 @@ def test_a_noise_free_frame_is_fitted_exactly():
     assert np.abs(result.pressure - truth).max() < 1e-2 * 60e3
     silent = solver.solve(np.zeros(THIN.shape))  # nothing to estimate from: no failure
     assert silent.noise_level == 0.0 and np.all(silent.pressure == 0.0)
+
+
+def test_a_noise_level_at_full_scale_or_beyond_is_refused():
+    # 1e300 Pa was taken: the discrepancy principle smoothed a 2 N contact to 0.02 N
+    truth = np.zeros((16, 16))
+    truth[6:9, 7:10] = 30e3
+    frame = TikhonovSolver(THIN).operator.apply(truth)
+    for method in ("tikhonov", "support", "nonneg"):
+        with pytest.raises(
+            ValueError,
+            match=r"`noise_level` must be below the full-scale reading \(2e\+05 Pa\), got 1e\+300",
+        ):
+            reconstruct(frame, "resistive16", method=method, noise_level=1e300)
+    with pytest.raises(ValueError, match=r"reading \(0.0004068 m\), got 0.001"):
+        reconstruct(np.zeros((8, 8)), "reflective8x8", noise_level=1e-3)
+    with pytest.raises(ValueError, match="`noise_level` must be below the full-scale reading"):
+        THIN.with_changes(noise_level=2e5)
+    assert THIN.with_changes(full_scale=None, noise_level=3e5).noise_level == 3e5  # no bound
+    noisy = frame + np.random.default_rng(0).normal(0.0, 400.0, frame.shape)
+    result = reconstruct(noisy, "resistive16", order=1, noise_level=400.0)  # as before
+    assert result.normal_force == pytest.approx(truth.sum() * 4e-6, rel=0.05)

@@ -76,6 +76,15 @@ def _run(arguments: argparse.Namespace) -> int:
     )
     frame = load_readings(path, arguments.sensor, arguments.calibration)
     spec = forward_model_preset(arguments.sensor, oversampling=arguments.oversampling)
+    if arguments.noise_level is not None:
+        try:
+            spec.check_noise_level(arguments.noise_level)
+        except ValueError:
+            unit = f" {spec.reading_unit}".rstrip()
+            raise ValueError(
+                f"--noise-level must be below the full-scale reading of {arguments.sensor} "
+                f"({spec.full_scale:.4g}{unit}), got {arguments.noise_level:g}"
+            ) from None
     result = reconstruct(
         frame,
         spec,

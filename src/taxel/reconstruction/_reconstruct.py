@@ -93,8 +93,9 @@ def reconstruct(
         The default, the discrepancy principle with the noise estimated from the frame,
         is the rule that comes closest to the best lambda in the benchmark.
     noise_level : float, optional
-        Reading noise std for "discrepancy"; default the sensor's, else estimated from
-        the frame (`estimate_noise_level`).
+        Reading noise std for "discrepancy", below the sensor's full-scale reading
+        (ValueError otherwise); default the sensor's, else estimated from the frame
+        (`estimate_noise_level`).
     tau : float, default 1.0
         Safety factor of the discrepancy principle.
     boundary, representation : str

@@ -61,7 +61,8 @@ class ForwardModelSpec:
     full_scale : float, optional
         Full-scale reading, in reading units (used to state noise as a fraction of it).
     noise_level : float, optional
-        Standard deviation of the reading noise, in reading units, if known.
+        Standard deviation of the reading noise, in reading units, if known; below
+        `full_scale`.
 
     Notes
     -----
@@ -122,6 +123,28 @@ class ForwardModelSpec:
             value = getattr(self, name)
             if value is not None:
                 object.__setattr__(self, name, check_positive(name, value))
+        if self.noise_level is not None:
+            self.check_noise_level(self.noise_level)
+
+    @property
+    def reading_unit(self) -> str:
+        """The unit of a reading: "Pa", "m", or "" for a strain."""
+        return {"stress": "Pa", "displacement": "m"}.get(self.quantity, "")
+
+    def check_noise_level(self, noise_level: Any, name: str = "noise_level") -> float:
+        """`noise_level` as a float; raise unless it is > 0 and below the full-scale reading.
+
+        Noise as large as the full-scale reading leaves nothing to reconstruct: the
+        discrepancy principle would smooth any contact away (2 N read 0.02 N at 1e300 Pa).
+        """
+        value = check_positive(name, noise_level)
+        if self.full_scale is not None and value >= self.full_scale:
+            unit = f" {self.reading_unit}".rstrip()
+            raise ValueError(
+                f"`{name}` must be below the full-scale reading ({self.full_scale:.4g}{unit}), "
+                f"got {value:g}"
+            )
+        return value
 
     @property
     def load_shape(self) -> tuple[int, int]:

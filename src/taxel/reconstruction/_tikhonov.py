@@ -151,8 +151,9 @@ class TikhonovSolver:
             lambda from 0 (the naive, unregularized inverse) to `LARGEST_REGULARIZATION`
             (1e150), or the rule choosing it.
         noise_level : float, optional
-            Reading noise std for the discrepancy principle; default the spec's, else
-            estimated from each frame (`estimate_noise_level`).
+            Reading noise std for the discrepancy principle, below the spec's
+            `full_scale` reading; default the spec's, else estimated from each frame
+            (`estimate_noise_level`).
         tau : float, default 1.0
             Safety factor of the discrepancy principle: |r| = tau sigma sqrt(m).
 
@@ -173,7 +174,7 @@ class TikhonovSolver:
         rule, value = parse_regularization(regularization)
         tau = check_positive("tau", tau)
         if noise_level is not None:
-            noise_level = check_positive("noise_level", noise_level)
+            noise_level = self.spec.check_noise_level(noise_level)
         elif self.spec.noise_level is not None:
             noise_level = self.spec.noise_level
         if self.spectrum.exact_mask:
