@@ -95,7 +95,7 @@ def test_a_given_lambda_and_oversampling(frame_file, tmp_path, capsys):
 @pytest.mark.parametrize(
     "extra, message",
     [
-        (["--sensor", "vhdta128"], "`frame` must have shape (128, 128)"),
+        (["--sensor", "vhdta128"], "holds frames of (16, 16), but --sensor vhdta128's frames"),
         (["--sensor", "gelsight"], "`--sensor` must be one of vhdta128, harmon10x20, resistive16"),
         (["--sensor", "resistive16", "--lambda", "-2"], "--lambda: must be a number from 0 to"),
         (["--sensor", "resistive16", "--lambda", "1e300"], "--lambda: must be a number from 0 to"),
@@ -365,9 +365,62 @@ def test_a_calibration_of_another_kind_is_named(tmp_path, capsys):
     calibrate(make_sensor("capacitive4x4"), n_levels=6).save(other)
     assert main([*arguments, "--calibration", str(other)]) == 2
     assert capsys.readouterr().err == (
-        f"taxel reconstruct: error: `FRAME` {str(frame)!r} holds frames of (16, 16), but "
-        "--calibration is of capacitive4x4, whose frames are (4, 4)\n"
+        f"taxel reconstruct: error: --calibration {other} was made for capacitive4x4, not "
+        "--sensor resistive16\n"
     )
+    assert not out.exists()
+
+
+def test_wrong_frames_and_calibrations_name_the_file_and_the_sensor(tmp_path, capsys):
+    # the frame's shape was reported as the library's `frame`, and a calibration of
+    # resistive16 given for vhdta128 as a frame of the wrong shape
+    from taxel.sensor import calibrate, make_sensor
+
+    wrong, line, codes = tmp_path / "pwrong.npy", tmp_path / "line.npy", tmp_path / "v.npy"
+    np.save(wrong, np.ones((8, 16)))
+    np.save(line, np.ones(16))
+    np.save(codes, np.full((128, 128), 100, np.int64))
+    calibration = tmp_path / "cal.npz"
+    calibrate(make_sensor("resistive16"), n_levels=6).save(calibration)
+    out = tmp_path / "p.npy"
+    cases = [
+        (
+            [str(wrong), "--sensor", "resistive16"],
+            f"`FRAME` {str(wrong)!r} holds frames of (8, 16), but --sensor resistive16's "
+            "frames are (16, 16)",
+        ),
+        (
+            [str(line), "--sensor", "resistive16"],
+            f"`FRAME` {str(line)!r} holds an array of shape (16,), not frames of --sensor "
+            "resistive16, which are (16, 16)",
+        ),
+        (
+            [str(codes), "--sensor", "vhdta128", "--calibration", str(calibration)],
+            f"--calibration {calibration} was made for resistive16, not --sensor vhdta128",
+        ),
+        (
+            [str(wrong), "--sensor", "resistive16", "--calibration", str(calibration)],
+            f"`FRAME` {str(wrong)!r} holds frames of (8, 16), but --sensor resistive16's "
+            "frames are (16, 16)",
+        ),
+    ]
+    odd = tmp_path / "odd.npz"  # named resistive16, calibrating 4 x 4 frames
+    calibrate(make_sensor("capacitive4x4"), n_levels=6).save(odd)
+    with np.load(odd) as archive:
+        arrays = dict(archive)
+    arrays["meta"] = np.array(str(arrays["meta"]).replace("capacitive4x4", "resistive16"))
+    with odd.open("wb") as handle:
+        np.savez(handle, **arrays)
+    cases.append(
+        (
+            [str(wrong), "--sensor", "resistive16", "--calibration", str(odd)],
+            f"--calibration {odd} is of resistive16 but calibrates frames of (4, 4), "
+            "not (16, 16)",
+        )
+    )
+    for arguments, message in cases:
+        assert main(["reconstruct", *arguments, "--out", str(out)]) == 2
+        assert capsys.readouterr().err == f"taxel reconstruct: error: {message}\n"
     assert not out.exists()
 
 

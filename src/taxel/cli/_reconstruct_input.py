@@ -42,19 +42,40 @@ def load_readings(path: Path, sensor_name: str, calibration_path: str | None) ->
         _check_archive(Path(calibration_path))
         with reading("--calibration", calibration_path):
             calibration = Calibration.load(calibration_path)
-        if frame.shape[-2:] != tuple(calibration.shape):
+        if calibration.sensor_name != sensor_name:  # before the frame: the likelier mistake
             raise ValueError(
-                f"`FRAME` {str(path)!r} holds frames of {frame.shape[-2:]}, but --calibration "
-                f"is of {calibration.sensor_name}, whose frames are {tuple(calibration.shape)}"
+                f"--calibration {calibration_path} was made for {calibration.sensor_name}, "
+                f"not --sensor {sensor_name}"
             )
+        if calibration.shape != sensor.shape:  # a damaged or hand-made file
+            raise ValueError(
+                f"--calibration {calibration_path} is of {sensor_name} but calibrates frames "
+                f"of {calibration.shape}, not {sensor.shape}"
+            )
+        _check_shape(path, frame, sensor)
         frame = calibrated_readings(frame, calibration, sensor)
     elif np.issubdtype(stored, np.integer):
         raise ValueError(
             f"`FRAME` {str(path)!r} holds raw codes ({stored}); give the sensor's "
             "calibration with --calibration CAL.npz (made by `taxel calibrate`)"
         )
+    _check_shape(path, frame, sensor)
     _check_range(path, frame, sensor)
     return frame
+
+
+def _check_shape(path: Path, frame: np.ndarray, sensor: TactileSensor) -> None:
+    """Refuse a FRAME whose frames are not the sensor's, naming the file and the sensor."""
+    if frame.ndim < 2:
+        raise ValueError(
+            f"`FRAME` {str(path)!r} holds an array of shape {frame.shape}, not frames of "
+            f"--sensor {sensor.name}, which are {sensor.shape}"
+        )
+    if frame.shape[-2:] != sensor.shape:
+        raise ValueError(
+            f"`FRAME` {str(path)!r} holds frames of {frame.shape[-2:]}, but --sensor "
+            f"{sensor.name}'s frames are {sensor.shape}"
+        )
 
 
 def _load_frame(path: Path) -> np.ndarray:
