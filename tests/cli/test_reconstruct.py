@@ -97,6 +97,12 @@ def test_a_given_lambda_and_oversampling(frame_file, tmp_path, capsys):
     [
         (["--sensor", "vhdta128"], "holds frames of (16, 16), but --sensor vhdta128's frames"),
         (["--sensor", "gelsight"], "`--sensor` must be one of vhdta128, harmon10x20, resistive16"),
+        (  # a preset `taxel simulate` takes, refused saying why
+            ["--sensor", "photoelastic64"],
+            "reflective8x8; got 'photoelastic64' ('photoelastic64' does not give one reading "
+            "per taxel of its 'stress_difference'; the pressure cannot be reconstructed",
+        ),
+        (["--sensor", "microbend16"], "got 'microbend16' ('microbend16' does not give one"),
         (["--sensor", "resistive16", "--lambda", "-2"], "--lambda: must be a number from 0 to"),
         (["--sensor", "resistive16", "--lambda", "1e300"], "--lambda: must be a number from 0 to"),
         (["--sensor", "resistive16", "--lambda", "oracle"], "--lambda: must be one of gcv"),

@@ -66,7 +66,7 @@ def _run(arguments: argparse.Namespace) -> int:
     if arguments.sensor not in FORWARD_MODEL_PRESETS:
         raise ValueError(
             f"`--sensor` must be one of {', '.join(FORWARD_MODEL_PRESETS)}; "
-            f"got {arguments.sensor!r}"
+            f"got {arguments.sensor!r}{_why_not_invertible(arguments.sensor)}"
         )
     from taxel.io import check_new_file, write_frame
 
@@ -129,6 +129,20 @@ def _run(arguments: argparse.Namespace) -> int:
         write_frame(arguments.out, result.pressure, overwrite=arguments.overwrite, inputs=(path,))
     sys.stdout.write(text)
     return 0
+
+
+def _why_not_invertible(name: str) -> str:
+    """For a sensor preset the reconstruction cannot invert, ' (why)'; else ''."""
+    from taxel.reconstruction import spec_from_sensor
+    from taxel.sensor import PRESET_NAMES, make_sensor
+
+    if name not in PRESET_NAMES:
+        return ""
+    try:
+        spec_from_sensor(make_sensor(name))
+    except ValueError as error:
+        return f" ({str(error).removeprefix('`sensor` ')})"
+    return ""
 
 
 def _support_stage(result) -> tuple[float | None, str | None]:
