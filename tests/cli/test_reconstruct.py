@@ -531,3 +531,23 @@ def test_support_reports_the_lambda_given_and_its_own_stage_s(frame_file, tmp_pa
     assert main([*arguments[:-5], "--json", "--overwrite"]) == 0  # tikhonov: one stage
     summary = json.loads(capsys.readouterr().out)
     assert summary["support_regularization"] is None and summary["support_rule"] is None
+
+
+def test_readings_beyond_the_calibrations_full_scale_are_warned_of(tmp_path, capsys):
+    # a 6.25 mm ball at 5 N loads resistive16's sensing plane to 246 kPa, beyond its
+    # 200 kPa full scale, at its 4 middle taxels; at 2 N to 98 kPa
+    calibration = tmp_path / "cal.npz"
+    assert main(["calibrate", "--sensor", "resistive16", "--out", str(calibration)]) == 0
+    for force, warned in (("5", "warning: 4 taxel readings of"), ("2", None)):
+        raw = tmp_path / f"raw{force}.npy"
+        argv = ["simulate", "--sensor", "resistive16", "--object", "sphere", "--force", force]
+        assert main([*argv, "--out", str(raw)]) == 0
+        capsys.readouterr()
+        argv = ["reconstruct", str(raw), "--sensor", "resistive16"]
+        argv += ["--calibration", str(calibration), "--out", str(tmp_path / f"p{force}.npy")]
+        assert main(argv) == 0
+        err = capsys.readouterr().err
+        if warned is None:
+            assert err == ""
+        else:
+            assert warned in err and "beyond the calibration's full scale" in err

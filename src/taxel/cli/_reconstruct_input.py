@@ -17,12 +17,15 @@ __all__ = ["LARGEST_PRESSURE", "load_readings"]
 LARGEST_PRESSURE = 1e12  # [Pa]
 
 
-def load_readings(path: Path, sensor_name: str, calibration_path: str | None) -> np.ndarray:
+def load_readings(
+    path: Path, sensor_name: str, calibration_path: str | None
+) -> tuple[np.ndarray, int]:
     """The readings of FRAME in the forward model's quantity, checked in range.
 
     Raw codes go through --calibration (`taxel.reconstruction.calibrated_readings`): to the
     pressure felt at depth [Pa], or for a displacement sensor to the surface displacement
-    [m]. Real numbers without a calibration are taken as readings already.
+    [m]. Real numbers without a calibration are taken as readings already. Also returns how
+    many taxel readings are at or beyond the calibration's full scale (0 without one).
     """
     from taxel.sensor import make_sensor
 
@@ -35,6 +38,7 @@ def load_readings(path: Path, sensor_name: str, calibration_path: str | None) ->
             "static calibration maps its raw codes (`taxel calibrate` cannot make one); give "
             f"FRAME {str(path)!r} as the stress change each taxel felt [Pa], in real numbers"
         )
+    saturated = 0
     if calibration_path is not None:
         from taxel.reconstruction import calibrated_readings
         from taxel.sensor import Calibration
@@ -53,6 +57,7 @@ def load_readings(path: Path, sensor_name: str, calibration_path: str | None) ->
                 f"of {calibration.shape}, not {sensor.shape}"
             )
         _check_shape(path, frame, sensor)
+        saturated = int(np.count_nonzero(calibration.beyond_full_scale(frame)))
         frame = calibrated_readings(frame, calibration, sensor)
     elif np.issubdtype(stored, np.integer):
         raise ValueError(
@@ -61,7 +66,7 @@ def load_readings(path: Path, sensor_name: str, calibration_path: str | None) ->
         )
     _check_shape(path, frame, sensor)
     _check_range(path, frame, sensor)
-    return frame
+    return frame, saturated
 
 
 def _check_shape(path: Path, frame: np.ndarray, sensor: TactileSensor) -> None:

@@ -136,6 +136,41 @@ class Calibration:
         pressure = np.where(self.valid.reshape(taxels), pressure, np.nan)
         return pressure.reshape(*lead, *shape)
 
+    def beyond_full_scale(self, raw: Any) -> np.ndarray:
+        """Which taxels read at or beyond their full-scale plate reading (saturated).
+
+        `apply` returns full scale there: the load beyond it is lost, and a total force
+        summed over such taxels is too small.
+
+        Parameters
+        ----------
+        raw : array_like, shape (..., *shape)
+            One or more raw frames of the sensor.
+
+        Returns
+        -------
+        numpy.ndarray of bool, shape (..., *shape)
+            False at the taxels `valid` excludes.
+
+        Examples
+        --------
+        >>> from taxel.sensor import calibrate, make_sensor
+        >>> sensor = make_sensor("resistive16")
+        >>> calibration = calibrate(sensor)
+        >>> plate = np.full(sensor.load_grid.shape, 2 * sensor.full_scale)
+        >>> int(calibration.beyond_full_scale(sensor.frame_from_pressure(plate).raw).sum())
+        256
+        >>> int(calibration.beyond_full_scale(calibration.readings[0]).sum())  # no load
+        0
+        """
+        raw = as_finite_array("raw", raw)
+        shape = self.shape
+        if raw.shape[raw.ndim - len(shape) :] != shape:
+            raise ValueError(f"`raw` must end in the calibrated shape {shape}, got {raw.shape}")
+        oriented = self.direction * raw
+        full = self.direction * self.readings[-1]
+        return (oriented >= full) & self.valid
+
     @cached_property
     def _rest_slope(self) -> np.ndarray:
         """Pressure per unit reading at no load, per taxel [Pa per raw unit]; 0 if flat.
