@@ -191,3 +191,44 @@ def test_frames_the_features_cannot_take(tmp_path, capsys, washer, setup, extra,
     error = capsys.readouterr().err
     assert error.startswith(f"taxel features: error: {path}: ") and message in error
     assert error.count("\n") == 1
+
+
+def test_pressure_map_chains_and_defects_flag(tmp_path, capsys):
+    # a pressure map as sparse as `taxel reconstruct --method support` writes: 1 taxel in 3
+    # of a 2 mm disc 10 taxels right of the centre, 0.25 MPa each (vhdta128: 0.2578 mm)
+    y, x = np.mgrid[:128, :128]
+    disc = np.hypot(y - 63.5, x - 73.5) <= 7.75
+    pressure = np.where(disc & ((y + 2 * x) % 3 == 0), 2.5e5, 0.0)
+    path = tmp_path / "pressure.npy"
+    np.save(path, pressure)
+    args = ["features", str(path), "--sensor", "vhdta128", "--calibrated", "--json"]
+    assert main(args) == 0
+    contact = json.loads(capsys.readouterr().out)["contact"]
+    pitch = 3.3e-2 / 128
+    assert contact["present"]
+    assert contact["total_force_n"] == pytest.approx(pressure.sum() * pitch**2, rel=1e-6)
+    assert pressure.sum() * pitch**2 == pytest.approx(1.014, abs=0.001)
+    # the speckle's centre of pressure: (9.795, 0.205) taxels off the array's centre
+    centre = [(x * pressure).sum() / pressure.sum(), (y * pressure).sum() / pressure.sum()]
+    assert np.subtract(centre, 63.5) == pytest.approx([9.795, 0.205], abs=0.001)
+    assert contact["centroid_m"] == pytest.approx(
+        (np.subtract(centre, 63.5) * pitch).tolist(), abs=0.03 * pitch
+    )
+    # --defects asks for the 3 x 3 opening, which erases such a map
+    assert main([*args, "--defects"]) == 0
+    assert not json.loads(capsys.readouterr().out)["contact"]["present"]
+
+
+def test_no_defects_keeps_a_thin_line_on_a_raw_frame(tmp_path, capsys):
+    # on a raw vhdta128 frame a line 1 taxel wide is a scratch, removed by default
+    frame = np.full((128, 128), 20, np.uint8)
+    frame[40, 30:90] = 200
+    path = tmp_path / "frame.npy"
+    np.save(path, frame)
+    args = ["features", str(path), "--sensor", "vhdta128", "--json"]
+    assert main(args) == 0
+    assert not json.loads(capsys.readouterr().out)["contact"]["present"]
+    assert main([*args, "--no-defects"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["contact"]["present"] and data["contact_type"] == "line"
+    assert data["contact"]["centroid_index"] == pytest.approx([40.0, 59.5], abs=0.01)

@@ -593,6 +593,46 @@ def test_defects_narrower_than_the_cover_blur_are_removed():
     assert cleaned.centroid_index == pytest.approx((20.0, 40.0), abs=0.1)
 
 
+def _speckle_map(sensor):
+    """A pressure map [Pa] as sparse as a deconvolution's, on `sensor`'s taxels.
+
+    3 kPa to 0.3 MPa on 1 taxel in 3 of a 2 mm disc centred 10 taxels right of and 6 below
+    the array's centre: no 3 x 3 block holds pressure everywhere, so a 3 x 3 opening
+    erases it.
+    """
+    rows, cols = sensor.shape
+    y, x = np.mgrid[:rows, :cols]
+    centre = ((rows - 1) / 2 + 6, (cols - 1) / 2 + 10)
+    disc = np.hypot(y - centre[0], x - centre[1]) <= 2e-3 / sensor.taxel_pitch[0]
+    speckle = ((y + 2 * x) % 3 == 0) & disc
+    level = np.random.default_rng(1).uniform(3e3, 3e5, speckle.shape)
+    return np.where(speckle, level, 0.0)
+
+
+def test_pressure_maps_keep_their_speckle():
+    # a pressure map at the surface (from `taxel reconstruct --method support`) is not
+    # blurred by the cover: by default a calibrated image is not opened, even on vhdta128
+    sensor = make_sensor("vhdta128")
+    pressure = _speckle_map(sensor)
+    pitch = sensor.taxel_pitch
+    force = pressure.sum() * pitch[0] * pitch[1]
+    assert force == pytest.approx(0.597, abs=0.001)
+    features = extract(pressure, sensor, calibrated=True)
+    assert features.contact.present
+    # all of it, where it is (the speckle's centre of pressure, up to the smoothing; that
+    # lies within 0.35 taxel of the disc's centre, 10 and 6 taxels off the array's)
+    assert features.contact.total_force_n == pytest.approx(force, rel=1e-6)
+    y, x = np.mgrid[: sensor.shape[0], : sensor.shape[1]]
+    row, col = ((pressure * y).sum() / pressure.sum(), (pressure * x).sum() / pressure.sum())
+    assert features.contact.centroid_index == pytest.approx((row, col), abs=0.03)
+    assert (row, col) == pytest.approx((63.5 + 6, 63.5 + 10), abs=0.35)
+    assert not prepare(pressure, sensor, calibrated=True).defects_removed
+    # asked for, or uncalibrated (a raw frame at the sensing plane), the opening erases it
+    assert not extract(pressure, sensor, calibrated=True, defects=True).contact.present
+    assert prepare(pressure, sensor).defects_removed
+    assert not prepare(pressure, sensor).present
+
+
 @pytest.mark.parametrize("seed", range(4))
 def test_outlines_of_one_region_in_the_order_findcontours_lists_them(seed):
     # prepare picks one region's outlines from those of all regions instead of tracing it

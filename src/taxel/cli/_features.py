@@ -193,7 +193,12 @@ def _run(arguments: argparse.Namespace) -> int:
         )
     pose = None if arguments.pose is None else _load_pose(Path(arguments.pose))
     features = extract(
-        image, pitch, pose=pose, calibrated=arguments.calibrated, noise=arguments.noise
+        image,
+        pitch,
+        pose=pose,
+        calibrated=arguments.calibrated,
+        noise=arguments.noise,
+        defects=arguments.defects,
     )
     if arguments.figure:  # first: a figure that cannot be written stops before any output
         from taxel.viz import plot_features
@@ -238,6 +243,16 @@ def register(commands: Any) -> None:
         help="the noise standard deviation of one taxel, in the image's units, when the "
         "sensor's is known (by default estimated from the image, which takes a texture as "
         "fine as the taxels over the whole array for noise)",
+    )
+    parser.add_argument(
+        "--defects",
+        action=argparse.BooleanOptionalAction,
+        help="remove (or, with --no-defects, keep) bright defects narrower than 3 taxels, "
+        "such as an FTIR sensor's glass scratches and hot pixels, before finding the contact. "
+        "By default they are removed from a raw frame of a sensor whose cover is 3 or more "
+        "taxels deep (--sensor vhdta128) and kept otherwise: never removed from a --calibrated "
+        "image, whose calibration has removed the sensor's fixed defects, and which as a "
+        "pressure map from `taxel reconstruct` can be as sparse as the load",
     )
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
     parser.add_argument("--figure", metavar="PNG", help="also draw the features to this file")

@@ -242,8 +242,9 @@ def extract(
         Gaussian sigma before counting texture maxima [taxels].
     defects : bool, optional
         Remove bright sensor defects narrower than 3 taxels (scratches on an FTIR sensor's
-        glass, hot pixels) first; by default when the sensor's cover is 3 or more taxels
-        deep (see `prepare`).
+        glass, hot pixels) first; by default only in an uncalibrated image of a sensor whose
+        cover is 3 or more taxels deep, never in a calibrated reading or a pressure map
+        (which a deconvolution can make as sparse as the load; see `prepare`).
     noise : float, optional
         Noise standard deviation of one taxel [image units], when the sensor's is known;
         estimated from the image if omitted (a texture as fine as the taxels over the whole

@@ -14,7 +14,12 @@ low-passes the pressure (a point load spreads over a half-maximum width of about
 times the depth of the sensing plane), so when that depth spans 3 or more taxels no true
 pressure feature is narrower than ~3.5 taxels, and bright structures under 3 taxels wide
 (scratches on an FTIR sensor's glass, hot pixels) are defects. A grey-level opening with a
-3 x 3 square removes them and leaves every wider structure as it was.
+3 x 3 square removes them and leaves every wider structure as it was. The argument holds
+for readings at the sensing plane only, so by default the opening is left out of calibrated
+images: a pressure map recovered at the surface by deconvolution (`taxel.reconstruction`)
+can be as sparse as the load itself, which the opening would erase, and a calibrated
+reading has its fixed-pattern defects (scratches, dead or stuck taxels) removed by the
+calibration already.
 """
 
 from __future__ import annotations
@@ -275,10 +280,17 @@ def _smoothing_gain(smoothing: float) -> float:
     return min(1.0 / (2.0 * math.sqrt(math.pi) * smoothing), 1.0)
 
 
-def removes_defects(sensor_or_pitch: Any, defects: bool | None) -> bool:
-    """Whether defects are removed: as asked, or (None) when the cover is >= 3 taxels deep."""
+def removes_defects(
+    sensor_or_pitch: Any, defects: bool | None, *, calibrated: bool = False
+) -> bool:
+    """Whether defects are removed: as asked, or by default (None) as the module notes say.
+
+    By default: in an uncalibrated image of a sensor whose cover is >= 3 taxels deep.
+    """
     if defects is not None:
         return check_flag("defects", defects)
+    if calibrated:
+        return False
     depth = cover_depth(sensor_or_pitch)
     if depth is None:
         return False
@@ -316,8 +328,9 @@ def prepare(
         which fails only when the whole sensor is in contact (pass 0 for pressure maps).
     defects : bool, optional
         Remove bright defects narrower than 3 taxels (glass scratches, hot pixels) with a
-        3 x 3 grey-level opening. By default only when `sensor_or_pitch` describes a cover
-        whose sensing plane lies 3 or more taxels deep (see the module notes).
+        3 x 3 grey-level opening. By default only in an uncalibrated image (a raw frame)
+        when `sensor_or_pitch` describes a cover whose sensing plane lies 3 or more taxels
+        deep: never in a calibrated image or pressure map (see the module notes).
     noise : float, optional
         The noise standard deviation of one taxel [image units], when the sensor's is
         known; by default estimated from the image, which cannot tell a texture as fine
@@ -345,7 +358,7 @@ def prepare(
     whole = values is given and dtype.kind in "biu" and dtype.itemsize * 8 <= _EXACT_BITS
     residual = laplacian_residual(values, step, whole=whole)
     raw_noise = _noise_sigma(residual) if noise is None else check_positive("noise", noise)
-    cleaned = removes_defects(sensor_or_pitch, defects)
+    cleaned = removes_defects(sensor_or_pitch, defects, calibrated=calibrated)
     if cleaned:
         values = cv2.morphologyEx(values, cv2.MORPH_OPEN, _DEFECT_KERNEL)
     if smoothing > 0:
