@@ -232,3 +232,38 @@ def test_no_defects_keeps_a_thin_line_on_a_raw_frame(tmp_path, capsys):
     data = json.loads(capsys.readouterr().out)
     assert data["contact"]["present"] and data["contact_type"] == "line"
     assert data["contact"]["centroid_index"] == pytest.approx([40.0, 59.5], abs=0.01)
+
+
+def test_a_4x4_frame_takes_the_presets_noise(tmp_path, capsys):
+    # a noise-free 0.5 N sphere on capacitive4x4: 4 taxels at 8371 codes, ~3100 elsewhere
+    frame = tmp_path / "cap.npy"
+    args = ["--sensor", "capacitive4x4", "--object", "sphere", "--force", "0.5"]
+    assert main(["simulate", *args, "--out", str(frame)]) == 0
+    capsys.readouterr()
+    assert main(["features", str(frame), "--sensor", "capacitive4x4", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["contact"]["present"] and data["contact_type"] == "surface"
+    assert data["contact"]["centroid_m"] == pytest.approx([0.0, 0.0], abs=1e-6)
+    assert data["contact"]["area_m2"] == pytest.approx(100e-6)
+
+
+@pytest.mark.parametrize(
+    ("extra", "message"),
+    [
+        (["--pitch", "5e-3", "--noise", "sensor"], "--noise sensor needs the sensor named with"),
+        (
+            ["--sensor", "capacitive4x4", "--calibrated", "--noise", "sensor"],
+            "--noise sensor is the noise of the sensor's raw frames, not of a --calibrated",
+        ),
+    ],
+)
+def test_noise_sensor_errors(tmp_path, capsys, extra, message):
+    path = tmp_path / "frame.npy"
+    np.save(path, np.full((4, 4), 3000, np.int64))
+    assert main(["features", str(path), *extra]) == 2
+    error = capsys.readouterr().err
+    assert message in error and error.count("\n") == 1
+    with pytest.raises(SystemExit) as stop:
+        main(["features", str(path), "--sensor", "capacitive4x4", "--noise", "camera"])
+    assert stop.value.code == 2
+    assert "--noise: must be a number > 0 or 'sensor', got 'camera'" in capsys.readouterr().err

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from taxel.features import extract
+from taxel.features import extract, prepare, sensor_noise
 from taxel.frames import make_pose
 from taxel.mechanics import make_indenter
 from taxel.sensor import make_sensor
@@ -131,3 +131,39 @@ def test_sixteen_by_sixteen_pen_and_edge():
     assert edge.contact_type == "line"
     error = abs((edge.shape.line.angle_rad - 0.5 + math.pi / 2) % math.pi - math.pi / 2)
     assert math.degrees(error) < 3.0
+
+
+def test_a_4x4_frame_takes_the_sensors_noise():
+    # 4 taxels read 8371 against 3040-3101 on a noise-free frame: the 4 interior taxels
+    # cannot give the noise (it came out ~3500 codes); the sensor's is 33.2 codes
+    sensor = make_sensor("capacitive4x4")
+    raw = sensor.press(make_indenter("sphere"), normal_force=0.5).raw
+    assert raw[1, 1] == 8371 and raw[0, 1] == 3101
+    assert sensor_noise(sensor) == pytest.approx(33.2, abs=0.05)
+    features = extract(raw, sensor)
+    assert features.contact.present and features.contact_type == "surface"
+    assert features.contact.centroid_index == pytest.approx((1.5, 1.5), abs=1e-6)
+    assert features.contact.area_m2 == pytest.approx(4 * 25e-6)
+    # with the sensor's own noise, an unloaded noisy frame shows no contact
+    rest = np.zeros(sensor.load_grid.shape)
+    for seed in range(5):
+        assert not extract(sensor.frame_from_pressure(rest, rng=seed).raw, sensor).contact.present
+    # a calibrated image (Pa) keeps the estimate: the sensor's noise is in raw codes
+    assert not extract(raw * 10.0, sensor, calibrated=True).contact.present
+    assert extract(raw * 10.0, sensor, calibrated=True, noise=300.0).contact.present
+
+
+def test_noise_sensor_is_asked_for_on_raw_frames_of_a_sensor():
+    # resistive16 is large enough to estimate its own noise: the sensor's is opt-in
+    sensor = make_sensor("resistive16")
+    raw = sensor.press(make_indenter("sphere"), normal_force=1.0).raw
+    noise = sensor_noise(sensor)
+    assert noise == pytest.approx(38.8, abs=0.05)
+    assert prepare(raw, sensor).raw_noise == pytest.approx(42.43, abs=0.01)
+    assert prepare(raw, sensor, noise="sensor").raw_noise == noise
+    with pytest.raises(ValueError, match="`noise='sensor'` is the noise of the sensor's raw"):
+        extract(raw, sensor, calibrated=True, noise="sensor")
+    with pytest.raises(ValueError, match="`noise` must be a number or 'sensor', got 'camera'"):
+        extract(raw, sensor, noise="camera")
+    with pytest.raises(TypeError, match="`noise='sensor'` needs a sensor that reads frames"):
+        extract(raw, 2e-3, noise="sensor")

@@ -151,6 +151,31 @@ def _pitch(arguments: argparse.Namespace) -> Any:
     return arguments.pitch
 
 
+def _noise(text: str) -> float | str:
+    """--noise: a positive number, or "sensor" for the preset's own noise."""
+    if text == "sensor":
+        return text
+    try:
+        float(text)
+    except ValueError:
+        message = f"must be a number > 0 or 'sensor', got {text!r}"
+        raise argparse.ArgumentTypeError(message) from None
+    return positive(text)
+
+
+def _check_noise(arguments: argparse.Namespace) -> None:
+    """Refuse --noise sensor without a --sensor, or on a --calibrated image."""
+    if arguments.noise != "sensor":
+        return
+    if arguments.sensor is None:
+        raise ValueError("--noise sensor needs the sensor named with --sensor PRESET")
+    if arguments.calibrated:
+        raise ValueError(
+            "--noise sensor is the noise of the sensor's raw frames, not of a --calibrated "
+            "image: give the image's noise in Pa, or leave it to be estimated"
+        )
+
+
 def _write_figure(path: Path, figure: Any) -> None:
     """Save the --figure PNG beside `path` and rename it: a failed write keeps an old one."""
     from taxel.io import write_files
@@ -164,6 +189,7 @@ def _run(arguments: argparse.Namespace) -> int:
     from taxel.io import read_frame
 
     pitch = _pitch(arguments)
+    _check_noise(arguments)
     if arguments.figure:
         from taxel.io import check_new_file
 
@@ -238,11 +264,14 @@ def register(commands: Any) -> None:
     parser.add_argument("--calibrated", action="store_true", help="the image holds pressure [Pa]")
     parser.add_argument(
         "--noise",
-        type=positive,
-        metavar="UNITS",
-        help="the noise standard deviation of one taxel, in the image's units, when the "
-        "sensor's is known (by default estimated from the image, which takes a texture as "
-        "fine as the taxels over the whole array for noise)",
+        type=_noise,
+        metavar="UNITS|sensor",
+        help="the noise standard deviation of one taxel, in the image's units, when it is "
+        "known; 'sensor': the --sensor preset's own noise in raw codes, for a raw frame (only "
+        "as right as the preset's model: a noisier frame then shows contacts in its noise). "
+        "By default estimated from the image, which takes a texture as fine as the taxels "
+        "over the whole array for noise; a raw frame of a --sensor with fewer than 16 "
+        "interior taxels (capacitive4x4), too small for the estimate, takes the preset's",
     )
     parser.add_argument(
         "--defects",

@@ -22,7 +22,8 @@ texture_measures (Texture), fit_line (LineFit), fit_circle (CircleFit)
 Helpers
 -------
 prepare (Prepared): validation, smoothing, noise, baseline and contact mask shared by all;
-sensor_coordinates: taxel indices to sensor-frame metres; pitch_pair.
+sensor_coordinates: taxel indices to sensor-frame metres; pitch_pair;
+sensor_noise: the noise of a sensor's raw frames (``noise="sensor"``).
 
 Examples
 --------
@@ -42,7 +43,7 @@ from taxel.features._fitting import CircleFit, LineFit, fit_circle, fit_line
 from taxel.features._gaps import Hole, HoleReport, Slot, SlotReport
 from taxel.features._holes import detect_holes, detect_slots
 from taxel.features._image import Prepared, prepare
-from taxel.features._sensor import pitch_pair, sensor_coordinates
+from taxel.features._sensor import pitch_pair, sensor_coordinates, sensor_noise
 from taxel.features._shape import CONTACT_TYPES, ContactShape, classify_contact
 from taxel.features._surface import ContactPlane, contact_plane
 from taxel.features._texture import Texture, texture_measures
@@ -76,5 +77,6 @@ __all__ = [
     "pitch_pair",
     "prepare",
     "sensor_coordinates",
+    "sensor_noise",
     "texture_measures",
 ]

@@ -213,7 +213,7 @@ def extract(
     point_size: float = 2.5e-3,
     texture_sigma: float = 2.0,
     defects: bool | None = None,
-    noise: float | None = None,
+    noise: float | str | None = None,
 ) -> TactileFeatures:
     """Every passive feature of one tactile image, located on the sensor and in the base frame.
 
@@ -245,10 +245,12 @@ def extract(
         glass, hot pixels) first; by default only in an uncalibrated image of a sensor whose
         cover is 3 or more taxels deep, never in a calibrated reading or a pressure map
         (which a deconvolution can make as sparse as the load; see `prepare`).
-    noise : float, optional
+    noise : float or "sensor", optional
         Noise standard deviation of one taxel [image units], when the sensor's is known;
         estimated from the image if omitted (a texture as fine as the taxels over the whole
-        array then reads as noise, see `prepare`).
+        array then reads as noise), except on a raw frame of a sensor too small to give it
+        (under 16 interior taxels), which takes the sensor's. "sensor": the noise of the
+        sensor's raw frames (`sensor_noise`) on any raw frame (see `prepare`).
 
     Returns
     -------

@@ -39,6 +39,7 @@ from taxel.features._sensor import (
     cover_depth,
     hexagonal_resampled,
     pitch_pair,
+    sensor_noise,
 )
 
 __all__ = ["Prepared", "prepare"]
@@ -64,6 +65,9 @@ _DEFECT_DEPTH = 3.0
 _DEFECT_KERNEL = np.ones((3, 3), np.uint8)
 # flood fill: 8-connected, writing 1 into its mask
 _FILL_8 = 8 | (1 << 8)
+# An image with fewer interior taxels cannot estimate its own noise (a contact covers most
+# of a 4 x 4 array's 4); a raw frame of a known sensor then takes the sensor's noise.
+_SMALL_IMAGE = 16
 # MAD of a standard normal, and the noise gain of `x - mean of its 4 neighbours`.
 _MAD = 1.4826
 _LAPLACE_GAIN = math.sqrt(1.25)
@@ -280,6 +284,32 @@ def _smoothing_gain(smoothing: float) -> float:
     return min(1.0 / (2.0 * math.sqrt(math.pi) * smoothing), 1.0)
 
 
+def _raw_noise(
+    noise: Any, sensor_or_pitch: Any, calibrated: bool, residual: np.ndarray, interior: int
+) -> float:
+    """The noise sigma of one taxel [image units]: as given, the sensor's, or estimated.
+
+    By default (None) estimated from the image's Laplacian residual, unless the image is a
+    raw frame of a sensor that reads frames and has too few interior taxels for the
+    estimate (`_SMALL_IMAGE`): then the sensor's own (`sensor_noise`).
+    """
+    if noise is None:
+        small = interior < _SMALL_IMAGE and not calibrated
+        if small and callable(getattr(sensor_or_pitch, "frame_from_pressure", None)):
+            return sensor_noise(sensor_or_pitch)
+        return _noise_sigma(residual)
+    if isinstance(noise, str):
+        if noise != "sensor":
+            raise ValueError(f"`noise` must be a number or 'sensor', got {noise!r}")
+        if calibrated:
+            raise ValueError(
+                "`noise='sensor'` is the noise of the sensor's raw frames, not of a calibrated "
+                "image: give its noise in the image's units, or leave it to be estimated"
+            )
+        return sensor_noise(sensor_or_pitch)
+    return check_positive("noise", noise)
+
+
 def removes_defects(
     sensor_or_pitch: Any, defects: bool | None, *, calibrated: bool = False
 ) -> bool:
@@ -305,7 +335,7 @@ def prepare(
     smoothing: float = 1.0,
     baseline: float | None = None,
     defects: bool | None = None,
-    noise: float | None = None,
+    noise: float | str | None = None,
 ) -> Prepared:
     """Validate, clean, smooth and segment a tactile image (the first step of every feature).
 
@@ -331,10 +361,15 @@ def prepare(
         3 x 3 grey-level opening. By default only in an uncalibrated image (a raw frame)
         when `sensor_or_pitch` describes a cover whose sensing plane lies 3 or more taxels
         deep: never in a calibrated image or pressure map (see the module notes).
-    noise : float, optional
+    noise : float or "sensor", optional
         The noise standard deviation of one taxel [image units], when the sensor's is
-        known; by default estimated from the image, which cannot tell a texture as fine
-        as the taxels from noise when it covers the whole array.
+        known. By default estimated from the image, which cannot tell a texture as fine
+        as the taxels from noise when it covers the whole array; a raw frame with fewer
+        than 16 interior taxels (a 4 x 4 array) cannot give it at all, and takes the
+        sensor's own noise when `sensor_or_pitch` is a sensor description that reads
+        frames (`sensor_noise`). "sensor" takes the sensor's noise on any raw frame; it
+        is only as right as the sensor's model: frames noisier than the model then show
+        contacts in their noise.
 
     Returns
     -------
@@ -357,7 +392,8 @@ def prepare(
     dtype = np.asarray(image).dtype  # (a raw frame: small integers, as it was given)
     whole = values is given and dtype.kind in "biu" and dtype.itemsize * 8 <= _EXACT_BITS
     residual = laplacian_residual(values, step, whole=whole)
-    raw_noise = _noise_sigma(residual) if noise is None else check_positive("noise", noise)
+    interior = (values.shape[0] - 2) * (values.shape[1] - 2)
+    raw_noise = _raw_noise(noise, sensor_or_pitch, calibrated, residual, interior)
     cleaned = removes_defects(sensor_or_pitch, defects, calibrated=calibrated)
     if cleaned:
         values = cv2.morphologyEx(values, cv2.MORPH_OPEN, _DEFECT_KERNEL)

@@ -9,6 +9,8 @@ hexagonal array's frame is resampled onto the rectangular grid first.
 
 from __future__ import annotations
 
+import math
+import weakref
 from typing import Any
 
 import numpy as np
@@ -27,9 +29,15 @@ __all__ = [
     "hexagonal_resampled",
     "pitch_pair",
     "sensor_coordinates",
+    "sensor_noise",
 ]
 
 _BLUR_CACHE: dict[Any, float] = {}
+_NOISE_CACHE: weakref.WeakKeyDictionary[Any, float] = weakref.WeakKeyDictionary()
+# `sensor_noise` pools the residuals of this many taxels at least (one 128 x 128 frame,
+# 64 frames of a 4 x 4 array) and reads at most this many frames
+_NOISE_RESIDUALS = 4096
+_NOISE_FRAMES = 64
 
 
 def cover_depth(sensor_or_pitch: Any) -> float | None:
@@ -61,6 +69,64 @@ def cover_blur(sensor_or_pitch: Any) -> float:
         width = float(np.count_nonzero(row >= 0.5 * row.max())) * sensor_or_pitch.taxel_pitch[1]
         _BLUR_CACHE[key] = width
     return width
+
+
+def sensor_noise(sensor: Any) -> float:
+    """Noise sigma of one taxel of the sensor's raw frames [raw units], as `prepare` sees it.
+
+    Parameters
+    ----------
+    sensor : taxel.sensor.TactileSensor
+        A sensor that reads frames (``frame_from_pressure``).
+
+    Returns
+    -------
+    float
+        The noise `prepare` would estimate from unloaded raw frames of the sensor, were
+        they large enough: the readout's noise, its quantization and the unit's fixed
+        pattern (gain and offset spread) together, which is what sets a raw frame's
+        background apart from a contact.
+
+    Notes
+    -----
+    Measured once per sensor (then cached) on unloaded frames drawn with a fixed seed
+    (`_NOISE_RESIDUALS` taxels at least, at most `_NOISE_FRAMES` frames), by the estimator
+    `prepare` applies to an image (the median absolute Laplacian residual) on all their
+    residuals pooled: an image of 16 taxels, most of them under a contact, cannot give its
+    own noise, but the sensor's frames can.
+
+    Examples
+    --------
+    >>> from taxel.sensor import make_sensor
+    >>> round(sensor_noise(make_sensor("capacitive4x4")), 1)  # 16-bit codes
+    33.2
+    """
+    from taxel.features._image import laplacian_residual, noise_from_residual
+
+    if not callable(getattr(sensor, "frame_from_pressure", None)):
+        raise TypeError(
+            f"`noise='sensor'` needs a sensor that reads frames (a taxel.sensor.TactileSensor), "
+            f"got {type(sensor).__name__}"
+        )
+    cached = _NOISE_CACHE.get(sensor)
+    if cached is not None:
+        return cached
+    rows, cols = sensor.shape
+    count = min(_NOISE_FRAMES, math.ceil(_NOISE_RESIDUALS / max((rows - 2) * (cols - 2), 1)))
+    rest = np.zeros(sensor.load_grid.shape)
+    rng = np.random.default_rng(0)
+    residuals = []
+    for _ in range(count):
+        raw = np.asarray(sensor.frame_from_pressure(rest, rng=rng).raw, dtype=np.float32)
+        if raw.ndim != 2:
+            raise ValueError(
+                f"`noise='sensor'` needs a sensor whose raw frames are images, got frames of "
+                f"shape {raw.shape}"
+            )
+        residuals.append(laplacian_residual(hexagonal_resampled(raw, sensor)).ravel())
+    noise = noise_from_residual(np.concatenate(residuals))
+    _NOISE_CACHE[sensor] = noise
+    return noise
 
 
 # Below a nanometre no tactile array exists, and areas (pitch squared) underflow.
