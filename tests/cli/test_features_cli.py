@@ -147,6 +147,32 @@ def test_a_failed_figure_keeps_the_old_one(tmp_path, capsys, washer, full_disk_s
         ('{"translation": null, "rotvec": [0, 0, 0]}', "'translation' must be a list of 3"),
         ('{"translation": [0, 0, 0], "rotvec": [0, 0, true]}', "'rotvec' must be a list of 3"),
         ("[" * 100_000 + "]" * 100_000, "nested too deeply to be a pose"),
+        # keys that were ignored: the pose was read as identity, or without its translation
+        (
+            '{"translation": [0, 0, 0], "rotvec": [0, 0, 0], "frame": "base"}',
+            "unknown key 'frame'",
+        ),
+        ('{"Translation": [0.4, 0.1, 0.25]}', "unknown key 'Translation': a pose is a 4x4 list"),
+        (
+            '{"matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]], '
+            '"translation": [0.4, 0.1, 0.25]}',
+            "'matrix' is the whole pose (its last column the translation), so 'translation'",
+        ),
+        (
+            '{"rotation": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "rotvec": [0, 0, 0], '
+            '"translation": [0, 0, 0]}',
+            "give one rotation: 'rotation' or 'rotvec', not both",
+        ),
+        ('{"translation": [0, 0, 0], "translation": [1, 0, 0]}', "key 'translation' given twice"),
+        ('{"rotvec": [0, 0, 1]}', "no 'translation': a pose is"),
+        (
+            '{"rotation": [[1, 0, 0], [0, 1, 0]], "translation": [0, 0, 0]}',
+            "'rotation' must be a 3x3 list of numbers (rows), got [[1, 0, 0], [0, 1, 0]]",
+        ),
+        (
+            '{"rotation": [[1, 0, 0], [0, 1, 0], [0, 0, -1]], "translation": [0, 0, 0]}',
+            "`rotation` must have a proper rotation block (orthonormal, det +1)",
+        ),
     ],
 )
 def test_poses_that_are_no_poses_are_one_line(tmp_path, capsys, washer, content, problem):
@@ -267,3 +293,22 @@ def test_noise_sensor_errors(tmp_path, capsys, extra, message):
         main(["features", str(path), "--sensor", "capacitive4x4", "--noise", "camera"])
     assert stop.value.code == 2
     assert "--noise: must be a number > 0 or 'sensor', got 'camera'" in capsys.readouterr().err
+
+
+def test_pose_as_rotation_and_translation(tmp_path, capsys, washer):
+    # the sensor upside down (x kept, y and z flipped) 0.4, 0.1, 0.25 m from the base
+    frame, pose = tmp_path / "frame.npy", tmp_path / "pose.json"
+    np.save(frame, washer)
+    rotation = [[1, 0, 0], [0, -1, 0], [0, 0, -1]]
+    pose.write_text(json.dumps({"rotation": rotation, "translation": [0.4, 0.1, 0.25]}))
+    assert main(["features", str(frame), "--pitch", "2.5e-4", "--pose", str(pose), "--json"]) == 0
+    contact = json.loads(capsys.readouterr().out)["contact"]
+    x, y, _ = contact["position_sensor_m"]
+    assert contact["centroid_base_m"] == pytest.approx([0.4 + x, 0.1 - y, 0.25], abs=1e-12)
+    assert contact["normal_base"] == pytest.approx([0.0, 0.0, -1.0])
+    # the same pose as a matrix
+    matrix = [[*rotation[i], t] for i, t in enumerate((0.4, 0.1, 0.25))] + [[0, 0, 0, 1]]
+    pose.write_text(json.dumps({"matrix": matrix}))
+    assert main(["features", str(frame), "--pitch", "2.5e-4", "--pose", str(pose), "--json"]) == 0
+    again = json.loads(capsys.readouterr().out)["contact"]
+    assert again["centroid_base_m"] == contact["centroid_base_m"]

@@ -46,33 +46,77 @@ def _numbers(data: dict[str, Any], key: str, length: int) -> list[float]:
     return value
 
 
-def _read_pose(path: Path) -> np.ndarray:
-    """A 4x4 pose from JSON: a nested list, or {"matrix": ...}, or translation + rotation."""
-    from scipy.spatial.transform import Rotation
+# the accepted layouts of a --pose file, for its help and its errors
+_POSE_FORMATS = (
+    "a 4x4 list, {'matrix': 4x4}, or {'translation': [x, y, z]} with at most one of "
+    "'rotation': 3x3, 'quaternion': [x, y, z, w], 'rotvec': [rx, ry, rz]"
+)
+_ROTATION_KEYS = ("rotation", "quaternion", "rotvec")
 
+
+def _rotation_matrix(data: dict[str, Any]) -> list[list[float]]:
+    """``data["rotation"]``, a 3x3 list of numbers, or a ValueError naming the key."""
+    value = data["rotation"]
+    if not (isinstance(value, list) and len(value) == 3 and all(
+        isinstance(row, list) and len(row) == 3
+        and all(isinstance(v, int | float) and not isinstance(v, bool) for v in row)
+        for row in value
+    )):  # fmt: skip
+        text = json.dumps(value)
+        text = text if len(text) <= 40 else text[:37] + "..."
+        raise ValueError(f"'rotation' must be a 3x3 list of numbers (rows), got {text}")
+    return value
+
+
+def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    """A JSON object as a dict, refusing a key given twice (JSON keeps the last silently)."""
+    data: dict[str, Any] = {}
+    for key, value in pairs:
+        if key in data:
+            raise ValueError(f"key {key!r} given twice")
+        data[key] = value
+    return data
+
+
+def _read_pose(path: Path) -> np.ndarray:
+    """A 4x4 pose from JSON in one of the `_POSE_FORMATS`; any other key is refused."""
     from taxel.frames import as_pose, make_pose
 
     try:
-        data = json.loads(path.read_text())
+        data = json.loads(path.read_text(), object_pairs_hook=_unique_keys)
     except json.JSONDecodeError as error:
         raise ValueError(f"not valid JSON ({error.msg})") from None
-    if isinstance(data, dict) and "matrix" in data:
-        data = data["matrix"]
     if isinstance(data, list):
         return as_pose(data, name="pose")
-    if isinstance(data, dict) and "translation" in data:
-        rotation = None
-        if "quaternion" in data and "rotvec" in data:
-            raise ValueError("give a quaternion or a rotvec, not both")
-        if "quaternion" in data:
+    if not isinstance(data, dict):
+        raise ValueError(f"a pose is {_POSE_FORMATS}")
+    if "matrix" in data:
+        others = sorted(key for key in data if key != "matrix")
+        if others:
+            raise ValueError(
+                f"'matrix' is the whole pose (its last column the translation), "
+                f"so {others[0]!r} cannot go beside it"
+            )
+        return as_pose(data["matrix"], name="pose")
+    unknown = sorted(key for key in data if key not in ("translation", *_ROTATION_KEYS))
+    if unknown:
+        raise ValueError(f"unknown key {unknown[0]!r}: a pose is {_POSE_FORMATS}")
+    if "translation" not in data:
+        raise ValueError(f"no 'translation': a pose is {_POSE_FORMATS}")
+    given = [key for key in _ROTATION_KEYS if key in data]
+    if len(given) > 1:
+        raise ValueError(f"give one rotation: {given[0]!r} or {given[1]!r}, not both")
+    rotation: Any = None
+    if given == ["rotation"]:
+        rotation = _rotation_matrix(data)
+    elif given:
+        from scipy.spatial.transform import Rotation
+
+        if given == ["quaternion"]:
             rotation = Rotation.from_quat(_numbers(data, "quaternion", 4))  # (x, y, z, w)
-        elif "rotvec" in data:
+        else:
             rotation = Rotation.from_rotvec(_numbers(data, "rotvec", 3))
-        return make_pose(rotation, _numbers(data, "translation", 3))
-    raise ValueError(
-        "a pose is a 4x4 list, {'matrix': 4x4} or "
-        "{'translation': [x, y, z], 'quaternion': [x, y, z, w] | 'rotvec': [...]}"
-    )
+    return make_pose(rotation, _numbers(data, "translation", 3))
 
 
 def _format(value: Any, scale: float = 1.0, digits: int = 3) -> str:
@@ -260,7 +304,14 @@ def register(commands: Any) -> None:
         help="the sensor preset the image comes from (e.g. vhdta128, resistive16): its "
         "pitch and cover",
     )
-    parser.add_argument("--pose", metavar="POSE.json", help="sensor pose T_BS in the base frame")
+    parser.add_argument(
+        "--pose",
+        metavar="POSE.json",
+        help="sensor pose T_BS in the base frame [m]: a JSON file holding "
+        + _POSE_FORMATS
+        + " (a 3x3 list of rows; the quaternion scalar-last; the rotation vector in "
+        "radians); no other key",
+    )
     parser.add_argument("--calibrated", action="store_true", help="the image holds pressure [Pa]")
     parser.add_argument(
         "--noise",
