@@ -312,3 +312,24 @@ def test_pose_as_rotation_and_translation(tmp_path, capsys, washer):
     assert main(["features", str(frame), "--pitch", "2.5e-4", "--pose", str(pose), "--json"]) == 0
     again = json.loads(capsys.readouterr().out)["contact"]
     assert again["centroid_base_m"] == contact["centroid_base_m"]
+
+
+@pytest.mark.parametrize("suffix", [".npy", ".png"])
+def test_calibrated_refuses_raw_codes(tmp_path, capsys, washer, suffix):
+    # an 8-bit camera frame read as pressure gave a "total force" of a few mN
+    path = tmp_path / f"frame{suffix}"
+    np.save(path, washer) if suffix == ".npy" else cv2.imwrite(str(path), washer)
+    args = ["features", str(path), "--pitch", "2.5e-4", "--calibrated", "--json"]
+    assert main(args) == 2
+    assert capsys.readouterr().err == (
+        f"taxel features: error: {path} holds raw codes (uint8), not pressure [Pa]: leave out "
+        "--calibrated for a raw frame, or give a pressure map (`taxel reconstruct FRAME "
+        "--calibration CAL.npz` makes one)\n"
+    )
+    # the same numbers as pressure [Pa]: 200 Pa on the washer's 1488 taxels (93.0 mm^2),
+    # 18.6 mN, and the 24 Pa of the ring of taxels that the smoothing adds to the contact
+    np.save(tmp_path / "pressure.npy", washer.astype(float))
+    assert main([*args[:1], str(tmp_path / "pressure.npy"), *args[2:]]) == 0
+    contact = json.loads(capsys.readouterr().out)["contact"]
+    assert np.count_nonzero(washer == 200) * 200 * 2.5e-4**2 == pytest.approx(0.0186)
+    assert contact["total_force_n"] == pytest.approx(0.018984, rel=1e-5)

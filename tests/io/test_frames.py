@@ -291,3 +291,15 @@ def test_a_corrupt_image_is_one_error_without_opencv_s_log(tmp_path, capfd):
     from cv2.utils import logging as cv_logging
 
     assert cv_logging.getLogLevel() != cv_logging.LOG_LEVEL_SILENT  # restored
+
+
+def test_read_frame_as_stored(tmp_path):
+    frame = np.arange(12, dtype=np.uint16).reshape(3, 4) * 1000
+    np.save(tmp_path / "raw.npy", frame)
+    np.savez(tmp_path / "raw.npz", frame=frame, other=frame.astype(np.float32))
+    stored = read_frame(tmp_path / "raw.npy", as_stored=True)
+    assert stored.dtype == np.uint16 and stored[2, 3] == 11000
+    assert read_frame(tmp_path / "raw.npy").dtype == np.float64
+    assert read_frame(tmp_path / "raw.npz", key="other", as_stored=True).dtype == np.float32
+    with pytest.raises(TypeError, match="`as_stored` must be True or False, got 'yes'"):
+        read_frame(tmp_path / "raw.npy", as_stored="yes")

@@ -245,9 +245,17 @@ def _run(arguments: argparse.Namespace) -> int:
             inputs=(arguments.file,),
         )
     try:
-        image = read_frame(arguments.file, key=arguments.key)
+        stored = read_frame(arguments.file, key=arguments.key, as_stored=True)
     except ValueError as error:  # read_frame names its parameter; here it is the flag
         raise ValueError(str(error).replace("`key`", "--key")) from None
+    if arguments.calibrated and np.issubdtype(stored.dtype, np.integer):
+        # as `taxel reconstruct` judges its FRAME: integers are an output's codes, not Pa
+        raise ValueError(
+            f"{arguments.file} holds raw codes ({stored.dtype}), not pressure [Pa]: leave out "
+            "--calibrated for a raw frame, or give a pressure map (`taxel reconstruct "
+            "FRAME --calibration CAL.npz` makes one)"
+        )
+    image = np.asarray(stored, dtype=np.float64)  # (as read_frame gives it)
     largest = float(np.abs(image).max())
     if largest > _LARGEST_VALUE:
         raise ValueError(
@@ -312,7 +320,12 @@ def register(commands: Any) -> None:
         + " (a 3x3 list of rows; the quaternion scalar-last; the rotation vector in "
         "radians); no other key",
     )
-    parser.add_argument("--calibrated", action="store_true", help="the image holds pressure [Pa]")
+    parser.add_argument(
+        "--calibrated",
+        action="store_true",
+        help="the image holds pressure [Pa] (real numbers: an image of integers holds raw codes "
+        "and is refused), so the contact carries a total force [N]",
+    )
     parser.add_argument(
         "--noise",
         type=_noise,

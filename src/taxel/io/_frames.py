@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from taxel._validation import check_positive
+from taxel._validation import check_flag, check_positive
 from taxel.io._arrays import read_archive, read_array
 from taxel.io._table import check_file, read_numeric_table
 
@@ -99,7 +99,9 @@ def _read_image(path: Path) -> np.ndarray:
     return image
 
 
-def read_frame(path: str | os.PathLike[str], *, key: str | None = None) -> np.ndarray:
+def read_frame(
+    path: str | os.PathLike[str], *, key: str | None = None, as_stored: bool = False
+) -> np.ndarray:
     r"""Read one tactile frame from a .npy, .npz, .png, .tif or .csv file.
 
     Parameters
@@ -109,12 +111,16 @@ def read_frame(path: str | os.PathLike[str], *, key: str | None = None) -> np.nd
     key : str, optional
         For .npz archives holding several arrays, the name of the frame's array (refused
         for other formats).
+    as_stored : bool, default False
+        Return the values in the type the file stores them in (the integers of a raw
+        frame: an image, or an .npy or .npz of integers; a csv is always float64) instead
+        of float64, checked alike.
 
     Returns
     -------
     numpy.ndarray
-        (rows, cols) float64 frame, in the file's units (8- and 16-bit images keep their
-        integer values, 0..255 and 0..65535).
+        (rows, cols) float64 frame (or as stored, with `as_stored`), in the file's units
+        (8- and 16-bit images keep their integer values, 0..255 and 0..65535).
 
     Raises
     ------
@@ -163,10 +169,10 @@ def read_frame(path: str | os.PathLike[str], *, key: str | None = None) -> np.nd
         frame = table.values
     else:
         frame = _read_image(path)
-    frame = _finite(path, frame, "the frame")
-    if frame.ndim != 2:
-        raise ValueError(f"{path}: a frame must be 2-D, got shape {frame.shape}")
-    return frame
+    checked = _finite(path, frame, "the frame")
+    if checked.ndim != 2:
+        raise ValueError(f"{path}: a frame must be 2-D, got shape {checked.shape}")
+    return np.asarray(frame) if check_flag("as_stored", as_stored) else checked
 
 
 def _check_time(path: Path, time: np.ndarray, lines: np.ndarray | None = None) -> None:
