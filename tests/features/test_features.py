@@ -731,3 +731,25 @@ def test_residual_of_integer_frames_by_one_filter_equals_the_sums():
             summed = laplacian_residual(frame, step)
             filtered = laplacian_residual(frame, step, whole=True)
             assert np.array_equal(summed, filtered)
+
+
+def test_size_and_lobes_are_none_when_not_measured():
+    # only compact contacts are measured at half their peak; a band is not (it gave 0.0)
+    y, x = np.mgrid[:64, :64]
+    edge = extract(np.where(np.abs(y - 32) < 3, 200, 20).astype(np.uint8), 0.25e-3)
+    assert edge.contact_type == "line"
+    assert edge.shape.size_m is None and edge.shape.lobes is None
+    data = json.loads(edge.to_json())
+    assert data["contact_size_m"] is None and data["lobes"] is None
+    # a disk 20 taxels across: 4.94 mm at half its peak, no lobes
+    disk = extract(np.where(np.hypot(x - 30, y - 34) < 10, 200, 20).astype(np.uint8), 0.25e-3)
+    assert disk.shape.rule == "compact face"
+    assert disk.shape.size_m == pytest.approx(4.936e-3, abs=1e-6)
+    assert disk.shape.lobes == pytest.approx(0.0, abs=1e-9)
+    # a point is measured, but too small for its lobes
+    pen = extract(np.exp(-((x - 20) ** 2 + (y - 10) ** 2) / 4.0), 0.25e-3)
+    assert pen.contact_type == "point"
+    assert pen.shape.size_m == pytest.approx(0.866e-3, abs=1e-6) and pen.shape.lobes is None
+    # no contact: neither
+    blank = extract(np.zeros((16, 16)), 1e-3)
+    assert blank.shape.size_m is None and blank.shape.lobes is None

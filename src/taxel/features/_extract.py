@@ -92,7 +92,8 @@ class TactileFeatures:
             Keys: contact, contact_type, contact_confidence, contact_rule, contact_size_m,
             lobes, edge_score, corner_score,
             n_edges, line, circle, holes, slots, planarity, normal, texture, regions.
-            Infinite or undefined numbers become None.
+            Infinite or undefined numbers become None, as do contact_size_m and lobes when
+            they were not measured (see `ContactShape`).
         """
         contact, shape, pose = self.contact, self.shape, self.pose
         line = shape.line

@@ -165,11 +165,15 @@ class ContactShape:
         Length (area over thickness) over thickness of the main region.
     concentration : float
         Signal-weighted over unweighted mean square radius of the main region.
-    size_m : float
+    size_m : float or None
         Major axis of the main region above half its peak [m]: the contact's size with
-        the blur of the smoothing and most of the cover's removed.
-    lobes : float
-        3rd angular harmonic of the main region's outline at half its peak.
+        the blur of the smoothing and most of the cover's removed. Measured on compact
+        contacts clear of the array's border only (the point and lobe rules'); None when
+        not measured (no contact, a band, a face with a hole, a texture...).
+    lobes : float or None
+        3rd angular harmonic of the main region's outline at half its peak, measured on
+        compact contacts that are not points and span 8 taxels or more at half their
+        peak; None when not measured.
     rule : str
         The rule that decided the type (see the module notes).
     """
@@ -184,8 +188,8 @@ class ContactShape:
     thickness_m: float
     elongation: float
     concentration: float
-    size_m: float
-    lobes: float
+    size_m: float | None
+    lobes: float | None
     rule: str
 
 
@@ -252,12 +256,12 @@ def shape_core(
     `contours`: the contact's outlines (every taxel), if already found; `outline_fit`:
     the line and circle fitted to them in taxel units, or a function that fits them when
     first called (a band's type does without). Only the
-    measures a rule needs are computed; the others are reported as 0.
+    measures a rule needs are computed; `size_m` and `lobes` are None when not measured.
     """
     pitch = prepared.mean_pitch
     if not contact.present:
         return ContactShape(
-            "none", 1.0, 0.0, 0.0, None, None, 0, 0.0, 0.0, 0.0, 0.0, 0.0, "no contact"
+            "none", 1.0, 0.0, 0.0, None, None, 0, 0.0, 0.0, 0.0, None, None, "no contact"
         )
     if contours is None:
         contours, _ = cv2.findContours(prepared.mask, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)
@@ -265,7 +269,8 @@ def shape_core(
     main, thickness, area, concentration = region_measures(prepared, contact)
     elongation = area / thickness**2
     edge_score = ramp(elongation, 1.0, 2.0)
-    size = three = 0.0
+    size: float | None = None
+    three: float | None = None
     line = circle = None
 
     def result(kind: str, confidence: float, corner: float, rule: str) -> ContactShape:
@@ -284,7 +289,8 @@ def shape_core(
         return ContactShape(
             kind, float(confidence), edge_score, float(corner), fitted_line, fitted_circle,
             len(outline), thickness * pitch, float(elongation), concentration,
-            size * pitch, float(three), rule,
+            None if size is None else size * pitch, None if three is None else float(three),
+            rule,
         )  # fmt: skip
 
     if is_textured(contact, high_point_count):
@@ -314,9 +320,11 @@ def shape_core(
             limit = math.hypot(smallest, prepared.blur) + 0.5 * pitch
         if size * pitch <= limit:
             return result("point", ramp(limit / (size * pitch), 1.0, 1.3), 0.0, "small contact")
-        three = three_lobes(prepared, half, moments, origin) if size >= _LOBES_TAXELS else 0.0
-        corner = ramp(three, 0.5 * _LOBES, 1.5 * _LOBES)
-        if three >= _LOBES:
+        corner = 0.0
+        if size >= _LOBES_TAXELS:
+            three = three_lobes(prepared, half, moments, origin)
+            corner = ramp(three, 0.5 * _LOBES, 1.5 * _LOBES)
+        if three is not None and three >= _LOBES:
             return result("corner", corner, corner, "three-lobed compact contact (vertex)")
         return result("surface", 1.0 - corner, corner, "compact face")
     decided = _free_outline(contours, prepared, explained)
