@@ -377,7 +377,7 @@ def classify_contact(
     >>> band = (np.abs(y - 0.5 * x - 16) < 3).astype(float)  # a straight edge pressed in
     >>> shape = classify_contact(band, 0.5e-3)
     >>> shape.contact_type, round(float(np.degrees(shape.line.angle_rad)), 1)
-    ('line', 26.6)
+    ('line', 26.7)
     >>> classify_contact(np.zeros((16, 16)), 1e-3).contact_type
     'none'
     """
