@@ -64,7 +64,7 @@ def test_json_summary(frame_file, tmp_path, capsys, method):
     summary = json.loads(capsys.readouterr().out)
     assert summary["method"] == method and summary["rule"] == "discrepancy"
     assert summary["regularization"] > 0 and summary["residual_norm"] > 0
-    assert summary["normal_force"] == pytest.approx(0.1 * 9 * 4e-6 * 40e3 * 10, rel=0.3)
+    assert summary["normal_force_n"] == pytest.approx(0.1 * 9 * 4e-6 * 40e3 * 10, rel=0.3)
     if method == "support":  # the load alone: no noise of unloaded cells
         # the load's centre: row 6, column 7 of 16 at a 2 mm pitch
         assert summary["centroid_m"] == pytest.approx([-1e-3, -3e-3], abs=0.1e-3)
@@ -190,7 +190,7 @@ def test_raw_frames_need_a_calibration_and_nothing_is_overwritten(tmp_path, caps
         == 0
     )
     summary = json.loads(capsys.readouterr().out.splitlines()[-1])
-    assert summary["normal_force"] == pytest.approx(2.0, rel=0.05)
+    assert summary["normal_force_n"] == pytest.approx(2.0, rel=0.05)
     before = np.load(raw)
     for target, flags, message in (
         (out, [], "exists; pass --overwrite"),
@@ -489,7 +489,7 @@ def test_a_displacement_sensor_is_calibrated_to_metres(tmp_path, capsys):
         arguments = ["reconstruct", str(raw), *sensor, "--calibration", str(calibration)]
         assert main([*arguments, "--method", method, "--out", str(out), "--json"]) == 0
         summary = json.loads(capsys.readouterr().out)
-        assert summary["normal_force"] == pytest.approx(0.05, rel=0.02), method
+        assert summary["normal_force_n"] == pytest.approx(0.05, rel=0.02), method
         assert summary["residual_norm"] < 1e-4  # metres
         assert np.nansum(np.load(out)) * 9e-6 == pytest.approx(0.05, rel=0.02)
 

@@ -112,10 +112,10 @@ def _run(arguments: argparse.Namespace) -> int:
         "support_rule": second_rule,
         "residual_norm": _finite_or_none(result.residual_norm),
         "solution_norm": _finite_or_none(result.solution_norm),
-        "normal_force": _finite_or_none(result.normal_force),
+        "normal_force_n": _finite_or_none(result.normal_force),
         "centroid_m": _finite_or_none(centre),
         "load_shape": list(spec.load_shape),
-        "load_pitch": spec.load_pitch,
+        "load_pitch_m": spec.load_pitch,
         "converged": result.converged,
         "out": str(arguments.out),
     }
@@ -273,5 +273,10 @@ def register(commands: argparse._SubParsersAction) -> None:
         "none (it senses only changes of load): give it the stress change [Pa]",
     )
     parser.add_argument("--overwrite", action="store_true", help="replace an existing --out")
-    parser.add_argument("--json", action="store_true", help="print a JSON summary")
+    parser.add_argument(
+        "--json",
+        action="store_true",
+        help="print a JSON summary (SI units; a key's unit is its suffix, as normal_force_n "
+        "and centroid_m; the norms are in the readings' and the pressure's own units)",
+    )
     parser.set_defaults(handler=_run)
