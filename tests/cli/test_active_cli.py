@@ -266,7 +266,7 @@ def test_bad_values_are_refused_before_any_press(capsys, arguments, message):
 
 
 def test_a_force_at_the_finger_s_limit_is_taken_and_one_above_is_refused():
-    from taxel.cli._active import _check_forces
+    from taxel.cli._active_procedures import _check_forces
     from taxel.cli._main import CommandLineError
 
     _check_forces("--force", [51.2], "resistive16")  # the limit as it is written

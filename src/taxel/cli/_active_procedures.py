@@ -1,0 +1,282 @@
+"""The handlers of ``taxel active ...``: each runs one procedure of `taxel.active` in simulation.
+
+Each prints what was measured against the truth it knows; ``--json`` prints the procedure's
+result (SI units), steps included. Degrees and millimetres are converted here, at the edge.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+import math
+import sys
+from collections.abc import Sequence
+from typing import Any
+
+from taxel.cli._files import building, file_or_build
+from taxel.cli._main import CommandLineError
+
+__all__ = ["edge_radius", "finger_limit", "locate_corner", "probe_plane", "recognize", "stiffness"]
+
+_EDGE_FORCES = (12.0, 39.0)  # taxel.active's DEFAULT_FORCES: the seed's light and firm presses
+_TOUCH_FORCE = 15.0  # taxel.active's DEFAULT_TOUCH_FORCE, of recognition's touches
+_TOUCH = 0.5  # measure_deformation's touch_force [N], the first press of a pad calibration
+
+
+def _emit(
+    arguments: argparse.Namespace,
+    payload: dict[str, Any],
+    lines: list[str],
+    built: Sequence[str] = (),
+) -> int:
+    """Print the result; then, on stderr, the files the command built (`built`)."""
+    if arguments.json:
+        json.dump(payload, sys.stdout, indent=2, allow_nan=True, default=float)
+        sys.stdout.write("\n")
+    else:
+        sys.stdout.write("\n".join(lines) + "\n")
+    for note in built:  # only now: an error before this point leaves its one line alone
+        sys.stderr.write(note + "\n")
+    return 0
+
+
+def finger_limit(sensor: str) -> float:
+    """The largest force [N] the simulated finger carrying the preset `sensor` presses with."""
+    from taxel.active import finger_force_limit
+
+    return finger_force_limit(sensor)
+
+
+def _check_forces(flag: str, forces: Sequence[float], sensor: str) -> None:
+    """Refuse, before any press, forces beyond what the finger with `sensor` may press.
+
+    A light and a firm force (two given to `flag`) must come in that order.
+    """
+    if len(forces) == 2 and forces[0] >= forces[1]:
+        raise CommandLineError(
+            f"{flag} {forces[0]:g} {forces[1]:g}: give the light force first, then a firmer one"
+        )
+    limit = finger_limit(sensor)
+    if max(forces) > limit:
+        given = " ".join(f"{force:g}" for force in forces)
+        # the limit to four significant digits, rounded down so that it is a force it takes
+        largest = float(f"{limit:.4g}")
+        if largest > limit:
+            largest -= 10.0 ** (math.floor(math.log10(limit)) - 3)
+        shown = f"{largest:.4g}"
+        raise CommandLineError(
+            f"{flag} {given}: the finger with {sensor} presses at most {shown} N (its "
+            f"full-scale pressure over a quarter of its area); give {flag} of at most {shown}"
+        )
+
+
+def probe_plane(arguments: argparse.Namespace) -> int:
+    from taxel.active import plane_probing_trial
+
+    _check_forces("--force", [arguments.force], arguments.sensor)
+    trial = plane_probing_trial(
+        arguments.sensor,
+        n_probes=arguments.probes,
+        face_tilt=math.radians(arguments.face_tilt_deg),
+        pose_tilt=math.radians(arguments.pose_tilt_deg),
+        normal_force=arguments.force,
+        seed=arguments.seed,
+    )
+    estimate = trial.estimate
+    lines = [
+        f"probed {arguments.probes} times with {arguments.sensor} at {arguments.force:g} N",
+        "normal (base frame): " + ", ".join(f"{v:+.5f}" for v in estimate.normal),
+        "true normal:         " + ", ".join(f"{v:+.5f}" for v in trial.true_normal),
+        f"normal error: {math.degrees(trial.normal_error):.4f} deg",
+        f"planarity residual: {estimate.residual * 1e6:.2f} um",
+    ]
+    return _emit(arguments, trial.to_dict(), lines)
+
+
+def locate_corner(arguments: argparse.Namespace) -> int:
+    from taxel.active import corner_probing_trial
+
+    _check_forces("--force", [arguments.force], arguments.sensor)
+    trial = corner_probing_trial(
+        arguments.sensor,
+        guess_error=arguments.guess_error_mm * 1e-3,
+        probes_per_face=arguments.probes_per_face,
+        normal_force=arguments.force,
+        seed=arguments.seed,
+    )
+    lines = [
+        f"probed three faces ({arguments.probes_per_face} presses each) with {arguments.sensor}",
+        "corner (base frame): "
+        + ", ".join(f"{v * 1e3:.3f}" for v in trial.estimate.corner)
+        + " mm",
+        "true corner:         " + ", ".join(f"{v * 1e3:.3f}" for v in trial.true_corner) + " mm",
+        f"corner error: {trial.corner_error * 1e3:.4f} mm "
+        f"(the guess was {trial.guess_error * 1e3:.2f} mm off)",
+    ]
+    return _emit(arguments, trial.to_dict(), lines)
+
+
+def edge_radius(arguments: argparse.Namespace) -> int:
+    from taxel.active import (
+        EdgeRadiusTable,
+        build_edge_radius_table,
+        measure_edge_radius,
+        sharpest_edge_radius,
+    )
+    from taxel.sensor import make_sensor
+
+    forces = _EDGE_FORCES if arguments.forces is None else tuple(arguments.forces)
+    _check_forces("--forces", forces, arguments.sensor)
+    sharpest = sharpest_edge_radius(make_sensor(arguments.sensor))
+    if arguments.radius_mm * 1e-3 <= sharpest:  # refused now, not after a table's build
+        raise CommandLineError(
+            f"--radius-mm {arguments.radius_mm:g}: {arguments.sensor}'s load grid resolves "
+            f"edges of radius above {sharpest * 1e3:.3g} mm (half its cell), no sharper"
+        )
+    built: list[str] = []
+    table = file_or_build(
+        arguments.table,
+        EdgeRadiusTable.load,
+        lambda path: build_edge_radius_table(sensor=arguments.sensor, forces=forces, path=path),
+        "edge-radius table",
+        "--table",
+        built,
+    )
+    if table is not None:
+        made = tuple(float(force) for force in table.forces)
+        if arguments.forces is not None and made != forces:
+            raise CommandLineError(
+                f"--forces {' '.join(f'{f:g}' for f in forces)}: the --table {arguments.table} "
+                f"was made with {' '.join(f'{f:g}' for f in made)} N; give those or another "
+                "--table"
+            )
+        forces = made
+    elif arguments.forces is not None:  # the default table is made at the default forces
+        with building("edge-radius table"):
+            table = build_edge_radius_table(sensor=arguments.sensor, forces=forces)
+    result = measure_edge_radius(
+        arguments.radius_mm * 1e-3,
+        table=table,
+        sensor=arguments.sensor,
+        position=(arguments.x_mm * 1e-3, arguments.y_mm * 1e-3),
+        angle=math.radians(arguments.angle_deg),
+        rng=arguments.seed,
+    )
+    lines = [
+        f"edge of radius {arguments.radius_mm:g} mm pressed at "
+        + " N and ".join(f"{force:g}" for force in forces)
+        + f" N on {arguments.sensor}",
+        f"estimated radius: {result.radius * 1e3:.3f} mm "
+        f"(+/- {result.radius_uncertainty * 1e3:.3f} mm)",
+        f"nearest table entry: {result.nearest_radius * 1e3:g} mm",
+        f"error: {(result.radius - arguments.radius_mm * 1e-3) * 1e3:+.3f} mm",
+        f"match: {result.message}",
+    ]
+    return _emit(arguments, result.to_dict(), lines, built)
+
+
+def stiffness(arguments: argparse.Namespace) -> int:
+    from taxel.active import PadCalibration, calibrate_pad, measure_deformation
+
+    def build(path: str) -> Any:
+        calibration = calibrate_pad(arguments.sensor, forces=(_TOUCH, *arguments.forces))
+        calibration.save(path)
+        return calibration
+
+    custom = arguments.shape is not None
+    if custom and (arguments.size_mm is None or arguments.modulus_mpa is None):
+        raise CommandLineError(
+            f"--shape {arguments.shape} needs its --size-mm and --modulus-mpa "
+            "(and optionally --poisson-ratio)"
+        )
+    _check_forces("--forces", arguments.forces, arguments.sensor)
+    if arguments.forces[0] <= _TOUCH:  # the procedure touches at _TOUCH first
+        raise CommandLineError(
+            f"--forces {' '.join(f'{f:g}' for f in arguments.forces)}: the light press must "
+            f"exceed the {_TOUCH:g} N touch that finds the object first"
+        )
+    built: list[str] = []
+    calibration = file_or_build(
+        arguments.calibration,
+        PadCalibration.load,
+        build,
+        "pad calibration",
+        "--calibration",
+        built,
+    )
+    if calibration is not None:
+        made = [float(force) for force in calibration.forces[-2:]]
+        if not math.isclose(made[0], arguments.forces[0], rel_tol=1e-3) or not math.isclose(
+            made[1], arguments.forces[1], rel_tol=1e-3
+        ):
+            raise CommandLineError(
+                f"--forces {' '.join(f'{f:g}' for f in arguments.forces)}: the --calibration "
+                f"{arguments.calibration} was made at {' '.join(f'{f:g}' for f in made)} N; "
+                "give those or another --calibration"
+            )
+    # with no --calibration the procedure calibrates the pad first, the long part
+    with building("pad calibration") if calibration is None else contextlib.nullcontext():
+        result = measure_deformation(
+            "custom " + arguments.shape if custom else arguments.object,
+            sensor=arguments.sensor,
+            forces=tuple(arguments.forces),
+            calibration=calibration,
+            rng=arguments.seed,
+            shape=arguments.shape,
+            size=None if arguments.size_mm is None else arguments.size_mm * 1e-3,
+            youngs_modulus=None if arguments.modulus_mpa is None else arguments.modulus_mpa * 1e6,
+            poisson_ratio=arguments.poisson_ratio,
+        )
+    lines = [
+        f"{'custom ' + arguments.shape if custom else arguments.object} pressed at "
+        + ", ".join(f"{force:g}" for force in result.forces)
+        + f" N on {arguments.sensor}",
+        "verdict: " + ("deformable" if result.deformable else "rigid"),
+        f"object stiffness: {result.stiffness:.3g} N/m ("
+        + (
+            f"pad {result.pad_stiffness:.3g} N/m)"
+            if math.isfinite(result.pad_stiffness)
+            else "the pad's compression did not grow between the presses: the load spread)"
+        ),
+        "height: " + " / ".join(f"{h * 1e3:.2f}" for h in result.heights) + " mm",
+        "contact area: " + " -> ".join(f"{a:.0f}" for a in result.area_pixels) + " pixels",
+    ]
+    return _emit(arguments, result.to_dict(), lines, built)
+
+
+def recognize(arguments: argparse.Namespace) -> int:
+    from taxel.active import ModelLibrary, build_model_library, recognize_object
+
+    force = _TOUCH_FORCE if arguments.force is None else arguments.force
+    _check_forces("--force", [force], arguments.sensor)
+    built: list[str] = []
+    library = file_or_build(
+        arguments.library,
+        ModelLibrary.load,
+        lambda path: build_model_library(sensor=arguments.sensor, normal_force=force, path=path),
+        "model library",
+        "--library",
+        built,
+    )
+    if library is not None:
+        if arguments.force is not None and library.normal_force != force:
+            raise CommandLineError(
+                f"--force {force:g}: the --library {arguments.library} was made with "
+                f"{library.normal_force:g} N; give that or another --library"
+            )
+        force = library.normal_force
+    elif arguments.force is not None:  # the default library is made at the default force
+        with building("model library"):
+            library = build_model_library(sensor=arguments.sensor, normal_force=force)
+    result = recognize_object(
+        arguments.object, library=library, sensor=arguments.sensor, rng=arguments.seed
+    )
+    lines = [
+        f"touched a {arguments.object} {result.n_touches} time(s) at {force:g} N on "
+        f"{arguments.sensor}",
+        "ranked candidates:",
+    ]
+    lines += [f"  {name:12} score {score:.3f}" for name, score, _ in result.candidates]
+    lines.append(f"recognized as: {result.name}")
+    return _emit(arguments, result.to_dict(), lines, built)
