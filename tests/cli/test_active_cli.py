@@ -214,6 +214,19 @@ def test_a_wrong_or_deeply_nested_file_names_its_flag(capsys, tmp_path, procedur
             ["stiffness", "--shape", "ball", "--size-mm", "20"],
             "--shape ball needs its --size-mm and --modulus-mpa",
         ),
+        (  # a named object is pressed as it is: never silently replaced or altered
+            ["stiffness", "--object", "steel ball", "--shape", "ball", "--size-mm", "20"],
+            "--object 'steel ball' conflicts with --shape ball: give either a named --object",
+        ),
+        (
+            ["stiffness", "--object", "steel ball", "--modulus-mpa", "1"],
+            "--object 'steel ball' conflicts with --modulus-mpa 1: --object presses the named "
+            "object as it is",
+        ),
+        (
+            ["stiffness", "--size-mm", "20", "--poisson-ratio", "0.3"],
+            "--size-mm 20 --poisson-ratio 0.3 describes a custom object: give --shape ball",
+        ),
         (["recognize", "--object", "nosuch"], "argument --object: must be one of washer, coin"),
         (["stiffness", "--object", "nosuch"], "argument --object: must be one of racquet ball"),
         (

@@ -153,11 +153,15 @@ def register(commands: argparse._SubParsersAction) -> None:
     )
     stiff.add_argument(
         "--object",
-        default="racquet ball",
         type=choice(DEFORMATION_OBJECTS),
-        help=f"named object ({', '.join(DEFORMATION_OBJECTS)})",
+        help=f"named object, pressed as it is ({', '.join(DEFORMATION_OBJECTS)}; default "
+        "racquet ball)",
     )
-    stiff.add_argument("--shape", choices=("ball", "block"), help="or a custom ball or block")
+    stiff.add_argument(
+        "--shape",
+        choices=("ball", "block"),
+        help="instead of --object, a custom ball or block: give its --size-mm and --modulus-mpa",
+    )
     stiff.add_argument(
         "--size-mm", type=positive_in(0.0, 1000.0), help="ball radius or block edge [mm], <= 1000"
     )
@@ -166,7 +170,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         type=positive_in(1e-6, 1e7),
         help="its Young's modulus [MPa], 1e-6 (1 Pa) to 1e7 (10 TPa)",
     )
-    stiff.add_argument("--poisson-ratio", type=real_in(-0.999, 0.5), help="its Poisson's ratio")
+    stiff.add_argument(
+        "--poisson-ratio", type=real_in(-0.999, 0.5), help="its Poisson's ratio (0.5)"
+    )
     stiff.add_argument(
         "--forces",
         type=positive,

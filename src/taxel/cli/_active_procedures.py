@@ -22,6 +22,7 @@ __all__ = ["edge_radius", "finger_limit", "locate_corner", "probe_plane", "recog
 _EDGE_FORCES = (12.0, 39.0)  # taxel.active's DEFAULT_FORCES: the seed's light and firm presses
 _TOUCH_FORCE = 15.0  # taxel.active's DEFAULT_TOUCH_FORCE, of recognition's touches
 _TOUCH = 0.5  # measure_deformation's touch_force [N], the first press of a pad calibration
+_DEFAULT_OBJECT = "racquet ball"  # what `stiffness` presses unless told
 
 
 def _emit(
@@ -176,6 +177,51 @@ def edge_radius(arguments: argparse.Namespace) -> int:
     return _emit(arguments, result.to_dict(), lines, built)
 
 
+_CUSTOM_FLAGS = (
+    ("--size-mm", "size_mm"),
+    ("--modulus-mpa", "modulus_mpa"),
+    ("--poisson-ratio", "poisson_ratio"),
+)
+
+
+def _deformation_object(arguments: argparse.Namespace) -> str:
+    """The name of the object `stiffness` presses: a named one as it is, or a custom one.
+
+    ``--object`` names an object of the library, whole; ``--shape`` with ``--size-mm`` and
+    ``--modulus-mpa`` (and optionally ``--poisson-ratio``) describes a custom one. Mixing the
+    two is refused: a named object with a property changed is no longer the object named.
+    """
+    given = [
+        f"{flag} {getattr(arguments, key):g}"
+        for flag, key in _CUSTOM_FLAGS
+        if getattr(arguments, key) is not None
+    ]
+    if arguments.shape is None:
+        if arguments.object is not None and given:
+            raise CommandLineError(
+                f"--object {arguments.object!r} conflicts with {' '.join(given)}: --object "
+                "presses the named object as it is; to press another, describe it whole with "
+                "--shape, --size-mm and --modulus-mpa instead"
+            )
+        if given:
+            raise CommandLineError(
+                f"{' '.join(given)} describes a custom object: give --shape ball or --shape "
+                "block with --size-mm and --modulus-mpa"
+            )
+        return str(arguments.object or _DEFAULT_OBJECT)
+    if arguments.object is not None:
+        raise CommandLineError(
+            f"--object {arguments.object!r} conflicts with --shape {arguments.shape}: give "
+            "either a named --object or a custom --shape with its --size-mm and --modulus-mpa"
+        )
+    if arguments.size_mm is None or arguments.modulus_mpa is None:
+        raise CommandLineError(
+            f"--shape {arguments.shape} needs its --size-mm and --modulus-mpa "
+            "(and optionally --poisson-ratio)"
+        )
+    return f"custom {arguments.shape}"
+
+
 def stiffness(arguments: argparse.Namespace) -> int:
     from taxel.active import PadCalibration, calibrate_pad, measure_deformation
 
@@ -184,12 +230,7 @@ def stiffness(arguments: argparse.Namespace) -> int:
         calibration.save(path)
         return calibration
 
-    custom = arguments.shape is not None
-    if custom and (arguments.size_mm is None or arguments.modulus_mpa is None):
-        raise CommandLineError(
-            f"--shape {arguments.shape} needs its --size-mm and --modulus-mpa "
-            "(and optionally --poisson-ratio)"
-        )
+    name = _deformation_object(arguments)
     _check_forces("--forces", arguments.forces, arguments.sensor)
     if arguments.forces[0] <= _TOUCH:  # the procedure touches at _TOUCH first
         raise CommandLineError(
@@ -218,7 +259,7 @@ def stiffness(arguments: argparse.Namespace) -> int:
     # with no --calibration the procedure calibrates the pad first, the long part
     with building("pad calibration") if calibration is None else contextlib.nullcontext():
         result = measure_deformation(
-            "custom " + arguments.shape if custom else arguments.object,
+            name,
             sensor=arguments.sensor,
             forces=tuple(arguments.forces),
             calibration=calibration,
@@ -229,7 +270,7 @@ def stiffness(arguments: argparse.Namespace) -> int:
             poisson_ratio=arguments.poisson_ratio,
         )
     lines = [
-        f"{'custom ' + arguments.shape if custom else arguments.object} pressed at "
+        f"{name} pressed at "
         + ", ".join(f"{force:g}" for force in result.forces)
         + f" N on {arguments.sensor}",
         "verdict: " + ("deformable" if result.deformable else "rigid"),
