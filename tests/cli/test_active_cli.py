@@ -98,6 +98,8 @@ def test_stiffness_tells_the_racquet_ball_from_the_acrylic_sphere(capsys, small_
     pad = str(small_files / "pad.json")
     assert main(["active", "stiffness", "--calibration", pad]) == 0
     out = capsys.readouterr().out
+    # three presses, as the help says: the touch that finds the ball, a light and a firm press
+    assert out.startswith("racquet ball touched at 0.5 N, then pressed at 12 N and 39 N on ")
     assert "verdict: deformable" in out
     assert "inf" not in out  # a pad whose compression did not grow is said so, not "inf N/m"
     assert main(["active", "stiffness", "--object", "acrylic sphere", "--calibration", pad]) == 0
@@ -408,3 +410,12 @@ def test_a_terminal_is_told_of_the_pad_calibration_the_procedure_builds(monkeypa
     # no --calibration: the procedure calibrates the pad itself, and says so while it does
     assert terminal.getvalue() == "building the pad calibration (this takes a while) ...\r\x1b[K"
     assert json.loads(capsys.readouterr().out)["deformable"] is True  # the racquet ball
+
+
+def test_stiffness_help_tells_of_its_three_presses(capsys):
+    with pytest.raises(SystemExit):
+        main(["active", "stiffness", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "from three presses: a 0.5 N touch finds the object's surface" in text
+    assert "then a light and a firm press (--forces)" in text
+    assert "made after the 0.5 N touch" in text

@@ -147,8 +147,9 @@ def register(commands: argparse._SubParsersAction) -> None:
     stiff = _add(
         group,
         "stiffness",
-        "deformation and stiffness from a light and a firm "
-        "press: rigid or deformable (Ellis, section 2.2)",
+        "deformation and stiffness, rigid or deformable (Ellis, section 2.2), from three "
+        "presses: a 0.5 N touch finds the object's surface (and, with the light press, its "
+        "unloaded height), then a light and a firm press (--forces) measure how much it gives",
         procedures.stiffness,
     )
     stiff.add_argument(
@@ -179,7 +180,8 @@ def register(commands: argparse._SubParsersAction) -> None:
         nargs=2,
         default=(12.0, 39.0),
         metavar=("LIGHT", "FIRM"),
-        help="the two forces [N] (12 39), at most the finger's limit (see edge-radius)",
+        help="the light and the firm press [N] (12 39), made after the 0.5 N touch; at most "
+        "the finger's limit (see edge-radius)",
     )
     stiff.add_argument(
         "--sensor", type=preset, default="vhdta128", help="sensor preset (%(default)s)"

@@ -270,8 +270,8 @@ def stiffness(arguments: argparse.Namespace) -> int:
             poisson_ratio=arguments.poisson_ratio,
         )
     lines = [
-        f"{name} pressed at "
-        + ", ".join(f"{force:g}" for force in result.forces)
+        f"{name} touched at {result.forces[0]:g} N, then pressed at "
+        + " N and ".join(f"{force:g}" for force in result.forces[1:])
         + f" N on {arguments.sensor}",
         "verdict: " + ("deformable" if result.deformable else "rigid"),
         f"object stiffness: {result.stiffness:.3g} N/m ("
