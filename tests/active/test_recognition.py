@@ -48,15 +48,65 @@ def test_the_library_holds_the_seven_models():
     assert distances[1] == pytest.approx(0.008)
 
 
-@pytest.mark.parametrize(("name", "seed"), [("washer", 4), ("coin", 5), ("pen", 6)])
-def test_models_at_random_poses_are_recognised(library, name, seed):
+@pytest.mark.parametrize(
+    ("name", "seed", "touches"), [("washer", 4, 1), ("coin", 5, 1), ("pen", 6, 3)]
+)
+def test_models_at_random_poses_are_recognised(library, name, seed, touches):
     result = recognize_object(name, library=library, rng=seed)
     assert result.name == name
-    assert result.n_touches == 3
+    # a washer or a coin is told by its first touch; a pen's first touch leaves no model
+    # within the library's spread of one touch (0.04: its two canonical pens differ more)
+    assert result.n_touches == touches
     assert result.candidates[0][0] == name
     assert sum(c[1] for c in result.candidates) == pytest.approx(1.0)
     assert result.score > 0.5
     json.dumps(result.to_dict())
+
+
+def test_recognition_stops_when_the_first_touch_leaves_one_model(library):
+    # the radius: the largest distance of a canonical touch from its model's other one
+    assert Recognition(library).first_touch_radius == pytest.approx(0.0397, abs=1e-4)
+    early = recognize_object("washer", library=library, rng=4)
+    assert early.n_touches == 1 and early.first_touch_radius == pytest.approx(0.0397, abs=1e-4)
+    (best, score, distance), (_, _, runner_up) = early.candidates[:2]
+    assert best == "washer" and distance < 0.0397 < runner_up  # only the washer is plausible
+    assert score > 0.98 and runner_up > 10.0
+    assert early.message == "washer (decided by the first touch: the only model within 0.04 of it)"
+    assert np.isnan(early.descriptor[len(TOUCH_FEATURES) :]).all()  # touches 2, 3 not made
+    assert [s.action for s in early.steps][-1] == "return to the start"
+    assert early.to_dict()["first_touch_radius"] == pytest.approx(0.0397, abs=1e-4)
+    full = recognize_object("washer", library=library, rng=4, stop_early=False)
+    assert full.n_touches == 3 and full.name == "washer"
+    assert np.isnan(full.first_touch_radius) and full.to_dict()["first_touch_radius"] is None
+
+
+def test_the_first_touch_radius_is_the_library_s_own_spread():
+    from taxel.active._recognition import first_touch_library, first_touch_radius
+
+    library = ModelLibrary.from_templates(
+        [[1.0, 10.0, 5.0], [1.0, 12.0, 5.0], [0.0, np.nan, 5.0]],
+        ["ring", "ring", "nothing"],
+        ("touch1:present", "touch1:major_axis", "min23:present"),
+        normal_force=10.0,
+        step=0.02,
+    )
+    first = first_touch_library(library)
+    assert first.feature_names == ("touch1:present", "touch1:major_axis")
+    # the two rings differ by 2 / sqrt(2) spreads in one of two features: (2 + 0) / 2 = 1;
+    # "nothing" has one canonical touch, so it sets no radius
+    assert first_touch_radius(first) == pytest.approx(1.0)
+    assert np.isnan(first_touch_radius(first_touch_library(library.__class__(
+        names=("a", "b"), templates=[[1.0], [2.0]], labels=("a", "b"), scales=[1.0],
+        feature_names=("touch1:present",), normal_force=1.0, step=0.01,
+    ))))  # fmt: skip
+    assert (
+        first_touch_library(
+            ModelLibrary.from_templates(
+                [[1.0], [2.0]], ["a", "b"], ("min23:present",), normal_force=1.0, step=0.01
+            )
+        )
+        is None
+    )
 
 
 def test_touch_vectors_and_descriptors():

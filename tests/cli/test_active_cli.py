@@ -126,7 +126,14 @@ def test_recognize_ranks_the_candidates(capsys, small_files):
         main(["active", "recognize", "--object", "washer", "--library", library, "--seed", "2"])
         == 0
     )
-    assert "recognized as: washer" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    # the washer's first touch leaves only it within the library's spread: one touch
+    assert out.startswith("touched a washer 1 time(s) at 15 N on vhdta128\n")
+    assert "recognized as: washer (decided by the first touch: the only model within " in out
+    args = ["active", "recognize", "--object", "washer", "--library", library, "--seed", "2"]
+    assert main([*args, "--three-touches", "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["name"] == "washer" and result["n_touches"] == 3
 
 
 def test_recognize_presses_within_the_finger_s_limit(capsys, small_files):

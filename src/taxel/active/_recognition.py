@@ -5,7 +5,8 @@ matching a known model (or, if information is limited and errorful, as matching 
 few specifiable models)". The finger touches where the object is thought to be, then twice
 more along the imprint's long axis, one object length's worth either way; the rotation-
 invariant features of the three touches are compared with those of the library's models
-touched the same way at canonical poses, and the models are ranked.
+touched the same way at canonical poses, and the models are ranked. When the first touch
+already leaves only one model plausible (`first_touch_radius`), the other two are not made.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from __future__ import annotations
 import math
 import os
 import warnings
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -27,9 +28,17 @@ from taxel.active._touch_features import TOUCH_FEATURES, touch_vector
 from taxel.features import extract, prepare
 from taxel.frames import transform_directions
 
-__all__ = ["Recognition", "RecognitionResult", "explore", "touch_descriptor"]
+__all__ = [
+    "Recognition",
+    "RecognitionResult",
+    "explore",
+    "first_touch_library",
+    "first_touch_radius",
+    "touch_descriptor",
+]
 
 N_TOUCHES = 3
+_FIRST = "touch1:"  # the prefix of the first touch's features in a library
 
 
 def touch_descriptor(touches: Sequence[np.ndarray]) -> np.ndarray:
@@ -58,11 +67,65 @@ def touch_descriptor(touches: Sequence[np.ndarray]) -> np.ndarray:
     return np.concatenate([first, low, high])
 
 
+def first_touch_library(library: ModelLibrary) -> ModelLibrary | None:
+    """The library restricted to its first touch's features (None when it holds none)."""
+    columns = [i for i, name in enumerate(library.feature_names) if name.startswith(_FIRST)]
+    if not columns:
+        return None
+    return ModelLibrary(
+        names=library.names,
+        templates=library.templates[:, columns],
+        labels=library.labels,
+        scales=library.scales[columns],
+        feature_names=tuple(library.feature_names[i] for i in columns),
+        normal_force=library.normal_force,
+        step=library.step,
+        sensor=library.sensor,
+    )
+
+
+def first_touch_radius(library: ModelLibrary) -> float:
+    """How far a touch of a model may lie from that model's canonical touches, by the library.
+
+    Each canonical touch is left out in turn and its distance (`ModelLibrary.distances`) to
+    the nearest other canonical touch of its own model is taken; the largest of these is the
+    radius. The library's touches are made at the canonical poses, turned and moved off-centre
+    by most of the placement error, so a model lying farther than this from a touch is not
+    a plausible match by the library's own evidence.
+
+    Parameters
+    ----------
+    library : ModelLibrary
+        Usually `first_touch_library`'s, so that the radius is that of a single touch.
+
+    Returns
+    -------
+    float
+        The radius (a distance, as `ModelLibrary.distances`); NaN when no model has two
+        canonical touches.
+    """
+    labels = np.array(library.labels)
+    largest = math.nan
+    for index, template in enumerate(library.templates):
+        same = labels == labels[index]
+        same[index] = False
+        if same.any():
+            distance = float(library.distances(template)[same].min())
+            largest = distance if math.isnan(largest) else max(largest, distance)
+    return largest
+
+
 def explore(
-    probe: Probe, *, normal_force: float, step: float
+    probe: Probe,
+    *,
+    normal_force: float,
+    step: float,
+    decided: Callable[[np.ndarray], bool] | None = None,
 ) -> tuple[list[np.ndarray], list[ProcedureStep]]:
     """Touch where the probe is, then `step` [m] either way along the imprint's long axis.
 
+    When `decided` is given and returns True for the first touch's vector, touches 2 and 3
+    are not made.
     A touch that finds nothing within the probe's reach (the probe raises
     `NoContactError`) counts as a touch without contact; any other error is raised. The
     probe is retracted after each touch and returned to its starting pose at the end, also
@@ -100,6 +163,8 @@ def explore(
                     **{k: v for k, v in measured.items() if math.isfinite(v)},
                 )
             )
+            if index == 0 and decided is not None and decided(vector):
+                break
             if index == 0 and features.pose is not None and features.pose.axis_base is not None:
                 # the imprint's long axis, kept in the sensor's plane
                 normal = transform_directions(start, [0.0, 0.0, 1.0])
@@ -128,11 +193,16 @@ class RecognitionResult:
     descriptor : numpy.ndarray
         The object's descriptor (`touch_descriptor`).
     n_touches : int
-        Touches made.
+        Touches made: 1 when the first touch left only one model within
+        `first_touch_radius` (the candidates are then ranked by that touch alone), else 3.
     message : str
         How sure the match is, in words.
     steps : tuple of ProcedureStep
         What the finger did and measured.
+    first_touch_radius : float, default nan
+        The stopping rule's radius (`first_touch_radius` of the library's first touches):
+        after the first touch, a model farther than this is implausible, and with one model
+        left the procedure stops. NaN when the rule was not applied.
     """
 
     name: str
@@ -141,6 +211,7 @@ class RecognitionResult:
     n_touches: int
     message: str
     steps: tuple[ProcedureStep, ...] = field(repr=False)
+    first_touch_radius: float = math.nan
 
     @property
     def score(self) -> float:
@@ -157,6 +228,9 @@ class RecognitionResult:
                 for name, score, distance in self.candidates
             ],
             "n_touches": self.n_touches,
+            "first_touch_radius": self.first_touch_radius
+            if math.isfinite(self.first_touch_radius)
+            else None,
             "message": self.message,
             "steps": [step.to_dict() for step in self.steps],
         }
@@ -170,6 +244,9 @@ class Recognition:
     library : ModelLibrary or path
         The models' canonical descriptors (`build_model_library`, `ModelLibrary.load`);
         its force and exploration step are used.
+    stop_early : bool, default True
+        Stop after the first touch when it leaves only one model plausible (see Notes);
+        False always touches three times.
 
     Notes
     -----
@@ -179,14 +256,37 @@ class Recognition:
     they find the ends, across a small object its rim, beside a can top its rim. The
     touches' rotation-invariant features (`TOUCH_FEATURES`) form the descriptor
     (`touch_descriptor`) that `ModelLibrary.match` compares with every model.
+
+    Stopping early: after touch 1, every model is compared on that touch's features alone
+    (`first_touch_library`). A model is plausible when its distance is within the library's
+    own spread of a single touch (`first_touch_radius`: the largest distance of a canonical
+    touch from its model's other canonical touches). When exactly one model is plausible,
+    touches 2 and 3 are not made and that model is the answer. On the seven models of
+    `MODEL_NAMES` (vhdta128, 8 rotations) this stops after one touch for most objects; when
+    the first touch leaves two models or none plausible, all three are made.
     """
 
-    def __init__(self, library: ModelLibrary | str | Any) -> None:
+    def __init__(self, library: ModelLibrary | str | Any, *, stop_early: bool = True) -> None:
         if not isinstance(library, ModelLibrary):
             if not isinstance(library, str | os.PathLike):
                 raise TypeError(f"`library` must be a ModelLibrary or its file, got {library!r}")
             library = ModelLibrary.load(library)
         self.library = library
+        check_instance("stop_early", stop_early, bool)
+        self.stop_early = stop_early
+        self._first = first_touch_library(library) if self.stop_early else None
+        self.first_touch_radius = (
+            first_touch_radius(self._first) if self._first is not None else math.nan
+        )
+
+    def _first_touch_match(self, vector: np.ndarray) -> list[tuple[str, float, float]] | None:
+        """The models ranked by the first touch when it leaves only one plausible, else None."""
+        if self._first is None or not math.isfinite(self.first_touch_radius) or vector[0] <= 0:
+            return None
+        n = len(self._first.feature_names)
+        ranked = self._first.match(touch_descriptor([vector])[:n])
+        plausible = [name for name, _, distance in ranked if distance <= self.first_touch_radius]
+        return ranked if len(plausible) == 1 else None
 
     def run(self, probe: Probe) -> RecognitionResult:
         """Explore the object and rank the models."""
@@ -201,6 +301,7 @@ class Recognition:
             probe,
             normal_force=check_positive("normal_force", library.normal_force),
             step=library.step,
+            decided=lambda vector: self._first_touch_match(vector) is not None,
         )
         if not any(vector[0] > 0 for vector in vectors):
             raise ValueError(
@@ -208,9 +309,15 @@ class Recognition:
                 f"{library.step * 1e3:g} mm of the start pose"
             )
         descriptor = touch_descriptor(vectors)
-        ranked = library.match(descriptor)
+        first = self._first_touch_match(vectors[0]) if len(vectors) == 1 else None
+        ranked = first if first is not None else library.match(descriptor)
         best, runner_up = ranked[0], ranked[1] if len(ranked) > 1 else None
-        if runner_up is None or best[1] > 0.9:
+        if first is not None:
+            message = (
+                f"{best[0]} (decided by the first touch: the only model within "
+                f"{self.first_touch_radius:.2f} of it)"
+            )
+        elif runner_up is None or best[1] > 0.9:
             message = f"{best[0]} (clear match)"
         else:
             message = f"{best[0]}, or perhaps {runner_up[0]} (score {best[1]:.2f})"
@@ -221,4 +328,5 @@ class Recognition:
             n_touches=len(vectors),
             message=message,
             steps=tuple(steps),
+            first_touch_radius=self.first_touch_radius,
         )

@@ -132,6 +132,7 @@ def recognize_object(
     angle: float | None = None,
     position_error: float = DEFAULT_POSITION_ERROR,
     rng: Any = None,
+    stop_early: bool = True,
 ) -> RecognitionResult:
     """Place model `name` at a pose, touch it and rank the library's models.
 
@@ -154,6 +155,9 @@ def recognize_object(
     rng : numpy.random.Generator or int, optional
         Draws the pose and the sensor noise (None: noise-free frames and a pose from a
         fresh generator).
+    stop_early : bool, default True
+        Stop after the first touch when it leaves only one model plausible
+        (`Recognition`); False always touches three times.
 
     Returns
     -------
@@ -172,7 +176,7 @@ def recognize_object(
             library = _default_library(sensor)
         else:
             library = build_model_library(sensor=chosen)
-    procedure = Recognition(library)
+    procedure = Recognition(library, stop_early=stop_early)
     generator = checked_rng if checked_rng is not None else np.random.default_rng()
     if position is None:
         radius = position_error * math.sqrt(generator.uniform())

@@ -194,7 +194,9 @@ def register(commands: argparse._SubParsersAction) -> None:
     recognize = _add(
         group,
         "recognize",
-        "recognize an object from up to three touches " "against a library of models",
+        "recognize an object against a library of models from up to three touches: one "
+        "when the first touch leaves only one model within the library's spread of a touch, "
+        "else three",
         procedures.recognize,
     )
     recognize.add_argument(
@@ -211,6 +213,11 @@ def register(commands: argparse._SubParsersAction) -> None:
         type=positive,
         help="force of each touch [N] (15, or the --library's), at most the finger's limit "
         "(see probe-plane); a library is built at this force",
+    )
+    recognize.add_argument(
+        "--three-touches",
+        action="store_true",
+        help="always touch three times, even when the first touch decides",
     )
     recognize.add_argument(
         "--library",

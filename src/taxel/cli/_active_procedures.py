@@ -311,7 +311,11 @@ def recognize(arguments: argparse.Namespace) -> int:
         with building("model library"):
             library = build_model_library(sensor=arguments.sensor, normal_force=force)
     result = recognize_object(
-        arguments.object, library=library, sensor=arguments.sensor, rng=arguments.seed
+        arguments.object,
+        library=library,
+        sensor=arguments.sensor,
+        rng=arguments.seed,
+        stop_early=not arguments.three_touches,
     )
     lines = [
         f"touched a {arguments.object} {result.n_touches} time(s) at {force:g} N on "
@@ -319,5 +323,5 @@ def recognize(arguments: argparse.Namespace) -> int:
         "ranked candidates:",
     ]
     lines += [f"  {name:12} score {score:.3f}" for name, score, _ in result.candidates]
-    lines.append(f"recognized as: {result.name}")
+    lines.append(f"recognized as: {result.message}")
     return _emit(arguments, result.to_dict(), lines, built)
