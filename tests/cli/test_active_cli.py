@@ -87,6 +87,13 @@ def test_edge_radius_loads_its_table(capsys, small_files):
     )
     result = json.loads(capsys.readouterr().out)
     assert result["radius_m"] == pytest.approx(3e-3, abs=0.4e-3)
+    # the simulated edge's radius and the error, as the text prints them
+    assert result["true_radius_m"] == 3e-3
+    assert result["error_m"] == pytest.approx(result["radius_m"] - 3e-3, abs=1e-15)
+    args = ["active", "edge-radius", "--radius-mm", "3", "--table", str(table), "--seed", "1"]
+    assert main(args) == 0
+    text = capsys.readouterr().out
+    assert f"error: {result['error_m'] * 1e3:+.3f} mm" in text
     assert table.read_text() == before  # loaded, never rewritten
     # beyond the table's radii (2.2-4.7 mm), the table says so, not only in JSON
     args = ["active", "edge-radius", "--radius-mm", "9", "--table", str(table), "--seed", "1"]

@@ -174,7 +174,14 @@ def edge_radius(arguments: argparse.Namespace) -> int:
         f"error: {(result.radius - arguments.radius_mm * 1e-3) * 1e3:+.3f} mm",
         f"match: {result.message}",
     ]
-    return _emit(arguments, result.to_dict(), lines, built)
+    # the simulated edge's radius is known here: the JSON tells it and the error, as the text
+    payload: dict[str, Any] = {}
+    for key, value in result.to_dict().items():
+        payload[key] = value
+        if key == "radius_uncertainty_m":
+            payload["true_radius_m"] = arguments.radius_mm * 1e-3
+            payload["error_m"] = result.radius - arguments.radius_mm * 1e-3
+    return _emit(arguments, payload, lines, built)
 
 
 _CUSTOM_FLAGS = (
