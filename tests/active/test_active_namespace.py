@@ -77,6 +77,7 @@ def test_public_names():
         "fit_edge_radius_table",
         "fit_plane",
         "fit_texture_classifier",
+        "largest_edge_offset",
         "load_shares",
         "locate_corner",
         "make_ball",

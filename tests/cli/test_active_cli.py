@@ -274,6 +274,41 @@ def test_a_wrong_or_deeply_nested_file_names_its_flag(capsys, tmp_path, procedur
             ["stiffness", "--forces", "0.3", "0.3"],
             "--forces 0.3 0.3: give the light force first, then a firmer one",
         ),
+        (  # the flags, not the library's `image`; refused before the table is built
+            ["edge-radius", "--radius-mm", "3", "--y-mm", "10", "--table", "/no/t.json"],
+            "error: --y-mm 10: the edge's crest passes 10 mm from the sensor's centre; on "
+            "vhdta128 it must pass within 8.7 mm (the cross-section is read 7 mm either side "
+            "of it, inside the active area)\n",
+        ),
+        (  # 12.4 mm along y at 45 degrees: 8.77 mm from the centre
+            ["edge-radius", "--radius-mm", "3", "--y-mm=12.4", "--angle-deg=45", "--table", "/t"],
+            "--y-mm 12.4 --angle-deg 45: the edge's crest passes 8.77 mm from the sensor's "
+            "centre; on vhdta128 it must pass within 8.7 mm",
+        ),
+        (
+            [
+                "edge-radius",
+                "--radius-mm",
+                "3",
+                "--x-mm=-4",
+                "--angle-deg=90",
+                "--sensor",
+                "resistive16",
+                "--table",
+                "/no/t.json",
+            ],
+            "--x-mm -4 --angle-deg 90: the edge's crest passes 4 mm from the sensor's centre; "
+            "on resistive16 it must pass within 3.0 mm",
+        ),
+        (
+            ["edge-radius", "--radius-mm", "3", "--sensor", "harmon10x20"],
+            "error: --sensor harmon10x20 is too small for an edge cross-section: 10 x 20 taxels",
+        ),
+        (
+            ["locate-corner", "--guess-error-mm", "900"],
+            "error: --guess-error-mm 900: probing from a guess this far off the corner missed "
+            "the box (face 1 probe 1 found nothing within the finger's reach)\n",
+        ),
         (  # refused before the table is built
             ["edge-radius", "--radius-mm", "0.1", "--table", "/no/t.json"],
             "--radius-mm 0.1: vhdta128's load grid resolves edges of radius above 0.129 mm",
@@ -383,8 +418,9 @@ def test_a_procedure_that_fails_after_its_build_leaves_one_line(capsys, tmp_path
     captured = capsys.readouterr()
     assert captured.out == ""
     assert captured.err.count("\n") == 1
-    assert captured.err.startswith(
-        "taxel active stiffness: error: no object within the finger's reach"
+    assert captured.err == (
+        "taxel active stiffness: error: --size-mm 0.5: the finger found no custom ball, too "
+        "small for capacitive4x4's load grid\n"
     )
     assert pad.exists()
     assert main([*args, "--calibration", str(pad)]) == 0  # loaded: nothing on stderr
@@ -406,7 +442,7 @@ def test_a_terminal_is_told_of_the_build_while_it_runs(monkeypatch, tmp_path):
     # the notice, erased (carriage return, clear to the line's end) before the error
     notice = "building the pad calibration (this takes a while) ...\r\x1b[K"
     assert terminal.getvalue().startswith(
-        notice + "taxel active stiffness: error: no object within"
+        notice + "taxel active stiffness: error: --size-mm 0.5: the finger found no custom"
     )
     assert terminal.getvalue().count("\n") == 1
     terminal.seek(0)
@@ -433,3 +469,41 @@ def test_stiffness_help_tells_of_its_three_presses(capsys):
     assert "from three presses: a 0.5 N touch finds the object's surface" in text
     assert "then a light and a firm press (--forces)" in text
     assert "made after the 0.5 N touch" in text
+
+
+@pytest.mark.parametrize(
+    ("procedure", "flag", "name"),
+    [
+        (["edge-radius", "--radius-mm", "3"], "--table", "t.json"),
+        (["stiffness"], "--calibration", "pad.json"),
+        (["recognize", "--object", "coin"], "--library", "l.json"),
+    ],
+)
+def test_a_file_made_on_another_sensor_names_its_flag_and_the_sensor(
+    capsys, small_files, procedure, flag, name
+):
+    path = small_files / name  # made on vhdta128
+    assert main(["active", *procedure, flag, str(path), "--sensor", "resistive16"]) == 2
+    assert capsys.readouterr().err == (
+        f"taxel active {procedure[0]}: error: {flag} {path} was made on vhdta128, not on "
+        f"--sensor resistive16: give --sensor vhdta128 or another {flag}\n"
+    )
+
+
+def test_a_custom_object_too_small_to_find_names_its_size(capsys, small_files):
+    pad = str(small_files / "pad.json")
+    args = ["--shape", "ball", "--size-mm", "0.01", "--modulus-mpa", "1", "--calibration", pad]
+    assert main(["active", "stiffness", *args]) == 2
+    assert capsys.readouterr().err == (
+        "taxel active stiffness: error: --size-mm 0.01: the finger found no custom ball, too "
+        "small for vhdta128's load grid\n"
+    )
+
+
+def test_an_edge_at_the_stated_limit_is_measured(capsys, small_files):
+    # 8.7 mm off the centre, the limit the refusal states, along the side and the diagonal
+    table = str(small_files / "t.json")
+    for where in (["--y-mm", "8.7"], ["--x-mm=-8.7", "--angle-deg", "90"]):
+        assert main(["active", "edge-radius", "--radius-mm", "3", "--table", table, *where]) == 0
+        estimate = capsys.readouterr().out.split("estimated radius: ")[1].split(" mm")[0]
+        assert abs(float(estimate) - 3.0) < 0.2

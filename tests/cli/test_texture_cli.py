@@ -255,3 +255,17 @@ def test_a_deeply_nested_model_is_refused(folders, tmp_path, capsys, monkeypatch
         "taxel texture classify: error: --model deep.json: nested too deeply to be a "
         "texture classifier\n"
     )
+
+
+def test_too_many_neighbors_names_the_flag_and_the_recordings(folders, tmp_path, capsys):
+    train, _ = folders  # six recordings
+    model_path = tmp_path / "model.json"
+    args = ["texture", "fit", str(train), "--out", str(model_path)]
+    assert main([*args, "--neighbors", "1000"]) == 2
+    assert _one_line_error(capsys) == (
+        "taxel texture fit: error: --neighbors 1000: the classifier votes among the 6 "
+        "recordings it is fitted on; give at most 6\n"
+    )
+    assert not model_path.exists()
+    assert main([*args, "--neighbors", "6"]) == 0  # as many as there are: taken
+    assert "fitted 6 recordings" in capsys.readouterr().out

@@ -38,7 +38,7 @@ Edge radius from a light and a firm press (empirical table, JSON)
 -----------------------------------------------------------------
 EdgeRadius, EdgeRadiusResult, measure_edge_radius, make_edge, edge_cross_section,
 EdgeCrossSection, SECTION_DESCRIPTORS, EdgeRadiusTable, fit_edge_radius_table,
-build_edge_radius_table, DEFAULT_EDGE_RADII, sharpest_edge_radius
+build_edge_radius_table, DEFAULT_EDGE_RADII, sharpest_edge_radius, largest_edge_offset
 
 Deformation and stiffness (touch, light and firm press)
 -------------------------------------------------------
@@ -68,6 +68,7 @@ from taxel.active._edge_radius import (
     EdgeRadius,
     EdgeRadiusResult,
     build_edge_radius_table,
+    largest_edge_offset,
     make_edge,
     measure_edge_radius,
     sharpest_edge_radius,
@@ -219,6 +220,7 @@ __all__ = [
     "fit_edge_radius_table",
     "fit_plane",
     "fit_texture_classifier",
+    "largest_edge_offset",
     "load_shares",
     "locate_corner",
     "make_ball",

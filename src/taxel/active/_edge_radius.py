@@ -25,7 +25,12 @@ from taxel._validation import (
     check_pair,
     check_positive,
 )
-from taxel.active._edge_section import EdgeCrossSection, check_section_fits, edge_cross_section
+from taxel.active._edge_section import (
+    EdgeCrossSection,
+    check_section_fits,
+    edge_cross_section,
+    section_reach,
+)
 from taxel.active._edge_table import EdgeRadiusTable, fit_edge_radius_table
 from taxel.active._finger import SimulatedFinger
 from taxel.active._imaging import imaging_sensor
@@ -41,6 +46,7 @@ __all__ = [
     "EdgeRadius",
     "EdgeRadiusResult",
     "build_edge_radius_table",
+    "largest_edge_offset",
     "make_edge",
     "measure_edge_radius",
     "sharpest_edge_radius",
@@ -107,6 +113,22 @@ def sharpest_edge_radius(sensor: TactileSensor) -> float:
     1.0
     """
     return max(sensor.load_grid.spacing) / 2
+
+
+def largest_edge_offset(sensor: TactileSensor) -> float:
+    """How far [m] from the sensor's centre an edge's crest may lie to be measured.
+
+    Its cross-section is read 7 mm either side of the crest, clear of the image's border,
+    whatever the edge's direction; beyond this distance (from the centre to the crest line,
+    along its normal) an edge along the sensor's side leaves too little of it.
+
+    Examples
+    --------
+    >>> from taxel.sensor import make_sensor
+    >>> round(largest_edge_offset(make_sensor("vhdta128")) * 1e3, 2)
+    8.73
+    """
+    return section_reach(sensor.shape, sensor.taxel_pitch)
 
 
 def _check_resolved(name: str, radius: float, sensor: TactileSensor) -> None:

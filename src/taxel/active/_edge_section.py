@@ -166,6 +166,19 @@ def _arc_radius(positions: np.ndarray, profile: np.ndarray, peak: float) -> floa
     return float(fit.radius_m) if math.isfinite(fit.radius_m) else 0.0
 
 
+def section_reach(shape: tuple[int, int], pitch: tuple[float, float]) -> float:
+    """How far [m] from the image's centre an edge's line may lie for its cross-section to fit.
+
+    The section is sampled `_HALF_SPAN` either side of the line, kept `_MARGIN` taxels clear of
+    the border; along the image's shorter side that leaves this much for the line's offset,
+    less one taxel for the fitted line's error (it lies up to a taxel outward near the
+    border, where the imprint is cut).
+    """
+    rows, cols = shape
+    usable = min((rows - 1 - 2 * _MARGIN) * pitch[0], (cols - 1 - 2 * _MARGIN) * pitch[1])
+    return max(usable / 2 - _HALF_SPAN - max(pitch), 0.0)
+
+
 def check_section_fits(name: str, shape: tuple[int, int], pitch: tuple[float, float]) -> None:
     """Raise naming `name` when an image of `shape` cannot hold a whole cross-section.
 

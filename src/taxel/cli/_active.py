@@ -141,8 +141,14 @@ def register(commands: argparse._SubParsersAction) -> None:
         metavar="TABLE.json",
         help="the empirical table: loaded if it exists, else built and saved",
     )
-    edge.add_argument("--x-mm", type=finite, default=0.0, help="edge position x [mm]")
-    edge.add_argument("--y-mm", type=finite, default=0.0, help="edge position y [mm]")
+    edge.add_argument(
+        "--x-mm",
+        type=finite,
+        default=0.0,
+        help="a point of the edge's crest, x [mm]; the crest must pass within a sensor's reach "
+        "of its centre (vhdta128: 8.7 mm, resistive16: 3 mm)",
+    )
+    edge.add_argument("--y-mm", type=finite, default=0.0, help="the same point's y [mm]")
     edge.add_argument("--angle-deg", type=finite, default=0.0, help="edge direction [deg]")
     stiff = _add(
         group,

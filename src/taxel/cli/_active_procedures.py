@@ -11,7 +11,7 @@ import contextlib
 import json
 import math
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from typing import Any
 
 from taxel.cli._files import building, file_or_build
@@ -72,6 +72,36 @@ def _check_forces(flag: str, forces: Sequence[float], sensor: str) -> None:
         )
 
 
+def _check_made_on(flag: str, path: str, made_on: str, sensor: str) -> None:
+    """Refuse a `flag` file (a table, calibration or library) made on another sensor."""
+    if made_on and made_on != sensor:
+        raise CommandLineError(
+            f"{flag} {path} was made on {made_on}, not on --sensor {sensor}: give --sensor "
+            f"{made_on} or another {flag}"
+        )
+
+
+_NO_OBJECT = "no object within the finger's reach"  # what a press that found nothing says
+
+
+@contextlib.contextmanager
+def _no_contact(flag: str, why: str) -> Iterator[None]:
+    """A press that found nothing within the finger's reach, said as the fault of `flag`.
+
+    The procedures say it as `NoContactError`, or as a ValueError naming the probe (`why`
+    then names it too, from the message's start).
+    """
+    try:
+        yield
+    except ValueError as error:
+        message = str(error)
+        if _NO_OBJECT not in message:
+            raise
+        where = message.split(" at (")[0] if " at (" in message else ""
+        found = f" ({where} found nothing within the finger's reach)" if where else ""
+        raise CommandLineError(f"{flag}: {why}{found}") from None
+
+
 def probe_plane(arguments: argparse.Namespace) -> int:
     from taxel.active import plane_probing_trial
 
@@ -99,13 +129,15 @@ def locate_corner(arguments: argparse.Namespace) -> int:
     from taxel.active import corner_probing_trial
 
     _check_forces("--force", [arguments.force], arguments.sensor)
-    trial = corner_probing_trial(
-        arguments.sensor,
-        guess_error=arguments.guess_error_mm * 1e-3,
-        probes_per_face=arguments.probes_per_face,
-        normal_force=arguments.force,
-        seed=arguments.seed,
-    )
+    why = "probing from a guess this far off the corner missed the box"
+    with _no_contact(f"--guess-error-mm {arguments.guess_error_mm:g}", why):
+        trial = corner_probing_trial(
+            arguments.sensor,
+            guess_error=arguments.guess_error_mm * 1e-3,
+            probes_per_face=arguments.probes_per_face,
+            normal_force=arguments.force,
+            seed=arguments.seed,
+        )
     lines = [
         f"probed three faces ({arguments.probes_per_face} presses each) with {arguments.sensor}",
         "corner (base frame): "
@@ -118,10 +150,64 @@ def locate_corner(arguments: argparse.Namespace) -> int:
     return _emit(arguments, trial.to_dict(), lines)
 
 
+def _position_flags(arguments: argparse.Namespace) -> str:
+    """The flags that placed the edge, as given (those left at 0 unsaid, but one)."""
+    given = [
+        f"{flag} {value:g}"
+        for flag, value in (("--x-mm", arguments.x_mm), ("--y-mm", arguments.y_mm))
+        if value != 0
+    ]
+    if given and arguments.angle_deg != 0:
+        given.append(f"--angle-deg {arguments.angle_deg:g}")
+    return " ".join(given) or "--y-mm 0"
+
+
+def _within(reach: float) -> str:
+    """The distance [mm] an edge's crest must stay within, rounded down to 0.1 mm."""
+    return f"{math.floor(reach * 1e4 + 1e-6) / 10:.1f}"
+
+
+def _check_edge_position(arguments: argparse.Namespace, reach: float) -> None:
+    """Refuse, before any build or press, an edge too far off the sensor's centre to measure.
+
+    `reach` [m]: `largest_edge_offset` of the sensor (0 when the sensor is too small for a
+    cross-section at all, which the procedure says).
+    """
+    angle = math.radians(arguments.angle_deg)
+    offset = abs(arguments.y_mm * math.cos(angle) - arguments.x_mm * math.sin(angle))
+    if reach > 0 and offset > float(_within(reach)):
+        raise CommandLineError(
+            f"{_position_flags(arguments)}: the edge's crest passes {offset:.3g} mm from the "
+            f"sensor's centre; on {arguments.sensor} it must pass within {_within(reach)} mm "
+            "(the cross-section is read 7 mm either side of it, inside the active area)"
+        )
+
+
+@contextlib.contextmanager
+def _edge_errors(arguments: argparse.Namespace, reach: float) -> Iterator[None]:
+    """The procedure's errors about its sensor and the edge's image, said with the flags."""
+    try:
+        yield
+    except ValueError as error:
+        message = str(error)
+        if message.startswith("`sensor` is too small"):
+            raise CommandLineError(
+                f"--sensor {arguments.sensor} {message.removeprefix('`sensor` ')}"
+            ) from None
+        if message.startswith("`image` shows its edge"):  # past the border, seen from noise
+            raise CommandLineError(
+                f"{_position_flags(arguments)}: the edge's crest was imaged too near the "
+                f"border of {arguments.sensor} to read its cross-section; keep it within "
+                f"{_within(reach)} mm of the sensor's centre"
+            ) from None
+        raise
+
+
 def edge_radius(arguments: argparse.Namespace) -> int:
     from taxel.active import (
         EdgeRadiusTable,
         build_edge_radius_table,
+        largest_edge_offset,
         measure_edge_radius,
         sharpest_edge_radius,
     )
@@ -135,6 +221,8 @@ def edge_radius(arguments: argparse.Namespace) -> int:
             f"--radius-mm {arguments.radius_mm:g}: {arguments.sensor}'s load grid resolves "
             f"edges of radius above {sharpest * 1e3:.3g} mm (half its cell), no sharper"
         )
+    reach = largest_edge_offset(make_sensor(arguments.sensor))
+    _check_edge_position(arguments, reach)
     built: list[str] = []
     table = file_or_build(
         arguments.table,
@@ -145,6 +233,7 @@ def edge_radius(arguments: argparse.Namespace) -> int:
         built,
     )
     if table is not None:
+        _check_made_on("--table", arguments.table, table.sensor, arguments.sensor)
         made = tuple(float(force) for force in table.forces)
         if arguments.forces is not None and made != forces:
             raise CommandLineError(
@@ -156,14 +245,15 @@ def edge_radius(arguments: argparse.Namespace) -> int:
     elif arguments.forces is not None:  # the default table is made at the default forces
         with building("edge-radius table"):
             table = build_edge_radius_table(sensor=arguments.sensor, forces=forces)
-    result = measure_edge_radius(
-        arguments.radius_mm * 1e-3,
-        table=table,
-        sensor=arguments.sensor,
-        position=(arguments.x_mm * 1e-3, arguments.y_mm * 1e-3),
-        angle=math.radians(arguments.angle_deg),
-        rng=arguments.seed,
-    )
+    with _edge_errors(arguments, reach):
+        result = measure_edge_radius(
+            arguments.radius_mm * 1e-3,
+            table=table,
+            sensor=arguments.sensor,
+            position=(arguments.x_mm * 1e-3, arguments.y_mm * 1e-3),
+            angle=math.radians(arguments.angle_deg),
+            rng=arguments.seed,
+        )
     lines = [
         f"edge of radius {arguments.radius_mm:g} mm pressed at "
         + " N and ".join(f"{force:g}" for force in forces)
@@ -254,6 +344,9 @@ def stiffness(arguments: argparse.Namespace) -> int:
         built,
     )
     if calibration is not None:
+        _check_made_on(
+            "--calibration", arguments.calibration, calibration.sensor, arguments.sensor
+        )
         made = [float(force) for force in calibration.forces[-2:]]
         if not math.isclose(made[0], arguments.forces[0], rel_tol=1e-3) or not math.isclose(
             made[1], arguments.forces[1], rel_tol=1e-3
@@ -264,7 +357,17 @@ def stiffness(arguments: argparse.Namespace) -> int:
                 "give those or another --calibration"
             )
     # with no --calibration the procedure calibrates the pad first, the long part
-    with building("pad calibration") if calibration is None else contextlib.nullcontext():
+    with (
+        building("pad calibration") if calibration is None else contextlib.nullcontext(),
+        (
+            _no_contact(
+                f"--size-mm {arguments.size_mm:g}",
+                f"the finger found no {name}, too small for {arguments.sensor}'s load grid",
+            )
+            if arguments.shape
+            else contextlib.nullcontext()
+        ),
+    ):
         result = measure_deformation(
             name,
             sensor=arguments.sensor,
@@ -308,6 +411,7 @@ def recognize(arguments: argparse.Namespace) -> int:
         built,
     )
     if library is not None:
+        _check_made_on("--library", arguments.library, library.sensor, arguments.sensor)
         if arguments.force is not None and library.normal_force != force:
             raise CommandLineError(
                 f"--force {force:g}: the --library {arguments.library} was made with "

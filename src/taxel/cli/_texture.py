@@ -66,6 +66,11 @@ def _fit(arguments: argparse.Namespace) -> int:
             for path in list_fabricslide_files(folder)
         )
     )
+    if arguments.neighbors > len(files):  # the library's `n_neighbors` bound, as the flag
+        raise ValueError(
+            f"--neighbors {arguments.neighbors}: the classifier votes among the {len(files)} "
+            f"recordings it is fitted on; give at most {len(files)}"
+        )
     out = check_new_file(
         arguments.out,
         suffix=".json",
