@@ -274,9 +274,9 @@ def estimate_contact_point(
     >>> frame = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, 20e3))
     >>> force = 20e3 * sensor.geometry.active_area
     >>> contact = estimate_contact_point(frame.raw, force, sensor, calibration)
-    >>> np.round(contact.point[:2] * 1e3, 2).tolist(), contact.n_cells
+    >>> (np.round(contact.point[:2] * 1e3, 2) + 0.0).tolist(), contact.n_cells
     ([0.0, 0.0], 256)
-    >>> np.round(contact.normal, 3).tolist()
+    >>> (np.round(contact.normal, 3) + 0.0).tolist()
     [0.0, 0.0, -1.0]
     """
     _check_static(sensor)

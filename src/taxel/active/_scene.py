@@ -189,7 +189,7 @@ class Box(SceneObject):
     --------
     >>> box = Box("box", size=(0.1, 0.06, 0.04))
     >>> origins = np.array([[0.0, 0.0, 0.05]])
-    >>> float(box.ray_distances(origins, [0.0, 0.0, -1.0])[0])  # 1 cm above the top face
+    >>> round(float(box.ray_distances(origins, [0.0, 0.0, -1.0])[0]), 12)  # 1 cm above
     0.01
     """
 
