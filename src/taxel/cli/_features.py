@@ -32,17 +32,21 @@ def _load_pose(path: Path) -> np.ndarray:
         raise ValueError(f"--pose {path}: {message}") from None
 
 
+def _is_number(value: Any) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool)
+
+
+def _shown(value: Any) -> str:
+    """A JSON value as an error shows it, cut to 40 characters."""
+    text = json.dumps(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
 def _numbers(data: dict[str, Any], key: str, length: int) -> list[float]:
     """``data[key]``, a list of `length` numbers, or a ValueError naming the key."""
     value = data[key]
-    if not (
-        isinstance(value, list)
-        and len(value) == length
-        and all(isinstance(item, int | float) and not isinstance(item, bool) for item in value)
-    ):
-        text = json.dumps(value)
-        text = text if len(text) <= 40 else text[:37] + "..."
-        raise ValueError(f"{key!r} must be a list of {length} numbers, got {text}")
+    if not (isinstance(value, list) and len(value) == length and all(map(_is_number, value))):
+        raise ValueError(f"{key!r} must be a list of {length} numbers, got {_shown(value)}")
     return value
 
 
@@ -58,13 +62,9 @@ def _rotation_matrix(data: dict[str, Any]) -> list[list[float]]:
     """``data["rotation"]``, a 3x3 list of numbers, or a ValueError naming the key."""
     value = data["rotation"]
     if not (isinstance(value, list) and len(value) == 3 and all(
-        isinstance(row, list) and len(row) == 3
-        and all(isinstance(v, int | float) and not isinstance(v, bool) for v in row)
-        for row in value
+        isinstance(row, list) and len(row) == 3 and all(map(_is_number, row)) for row in value
     )):  # fmt: skip
-        text = json.dumps(value)
-        text = text if len(text) <= 40 else text[:37] + "..."
-        raise ValueError(f"'rotation' must be a 3x3 list of numbers (rows), got {text}")
+        raise ValueError(f"'rotation' must be a 3x3 list of numbers (rows), got {_shown(value)}")
     return value
 
 
