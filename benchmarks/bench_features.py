@@ -27,6 +27,7 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "tests" / "features"))
 import synthetic  # noqa: E402
 
+import features_rest  # noqa: E402
 import features_scenes  # noqa: E402
 from taxel.features import CONTACT_TYPES, extract, prepare  # noqa: E402
 
@@ -247,13 +248,16 @@ def _response_centroid(frame, sensor) -> tuple[float, float] | None:
     return float((weight * x).sum() / total), float((weight * y).sum() / total)
 
 
-def evaluate(frames: list, sensor) -> list[dict]:
-    """Run the features on each labelled frame: one row of truth and estimate per frame."""
+def evaluate(frames: list, sensor, **options) -> list[dict]:
+    """Run the features on each labelled frame: one row of truth and estimate per frame.
+
+    `options` go to `extract` (e.g. a `reference` frame).
+    """
     rows = []
     pitch = math.sqrt(sensor.taxel_pitch[0] * sensor.taxel_pitch[1])
     reference = _reads_pressure(sensor)
     for frame in frames:
-        features = extract(frame.raw, sensor, pose=frame.pose)
+        features = extract(frame.raw, sensor, pose=frame.pose, **options)
         shape = features.shape
         row = {
             "frame": frame,
@@ -560,6 +564,7 @@ def run(quick: bool = False, seed: int = SEED, details: bool = False) -> str:
         "",
         _speed_simulated(frames, 5 if quick else 20),
         accuracy,
+        features_rest.section(quick, seed, evaluate),
     ]
     return "\n".join(parts)
 

@@ -333,3 +333,39 @@ def test_calibrated_refuses_raw_codes(tmp_path, capsys, washer, suffix):
     contact = json.loads(capsys.readouterr().out)["contact"]
     assert np.count_nonzero(washer == 200) * 200 * 2.5e-4**2 == pytest.approx(0.0186)
     assert contact["total_force_n"] == pytest.approx(0.018984, rel=1e-5)
+
+
+def test_reference_frame_tares_a_frame_at_rest(tmp_path, capsys):
+    from taxel.sensor import make_sensor
+
+    sensor = make_sensor("vhdta128")
+    rest = np.zeros(sensor.load_grid.shape)
+    reference = np.mean([sensor.frame_from_pressure(rest, rng=100 + k).raw for k in range(8)], 0)
+    np.save(tmp_path / "reference.npy", reference)
+    # an unloaded frame in which two crossing scratches outlast the opening
+    frame = sensor.frame_from_pressure(rest, rng=3).raw
+    np.save(tmp_path / "frame.npy", frame)
+    args = ["features", str(tmp_path / "frame.npy"), "--sensor", "vhdta128", "--json"]
+    assert main(args) == 0
+    assert json.loads(capsys.readouterr().out)["contact"]["present"]
+    assert main([*args, "--reference", str(tmp_path / "reference.npy")]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert not data["contact"]["present"] and data["contact_type"] == "none"
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        (np.zeros((64, 64)), "a 64 x 64 frame, but"),
+        (np.full((128, 128), np.inf), "--reference: "),
+        (None, "no such file"),
+    ],
+)
+def test_reference_errors_are_one_line(tmp_path, capsys, content, message):
+    np.save(tmp_path / "frame.npy", np.zeros((128, 128), np.uint8))
+    if content is not None:
+        np.save(tmp_path / "reference.npy", content)
+    args = ["features", str(tmp_path / "frame.npy"), "--sensor", "vhdta128"]
+    assert main([*args, "--reference", str(tmp_path / "reference.npy")]) == 2
+    err = capsys.readouterr().err
+    assert message in err and len(err.strip().splitlines()) == 1

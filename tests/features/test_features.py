@@ -721,7 +721,7 @@ def test_binary_moments_of_a_crop_equal_opencvs_on_the_whole_image():
 def test_residual_of_integer_frames_by_one_filter_equals_the_sums():
     # frames of up to 16-bit integers take the residual from one filter: it must give the
     # four sums' values exactly (every partial sum is a multiple of 1/4, exact in float32)
-    from taxel.features._image import laplacian_residual
+    from taxel.features._noise import laplacian_residual
 
     rng = np.random.default_rng(6)
     for _ in range(100):

@@ -228,6 +228,22 @@ def _write_figure(path: Path, figure: Any) -> None:
         write_files([(path, lambda temporary: figure.savefig(temporary, dpi=120, format="png"))])
 
 
+def _load_reference(arguments: argparse.Namespace, shape: tuple[int, ...]) -> np.ndarray:
+    """--reference: the unloaded frame (finite, as `read_frame` checks), of the image's shape."""
+    from taxel.io import read_frame
+
+    try:
+        reference = read_frame(arguments.reference, as_stored=True)
+    except ValueError as error:
+        raise ValueError(f"--reference: {error}") from None
+    if reference.shape != shape:
+        raise ValueError(
+            f"--reference {arguments.reference}: a {' x '.join(map(str, reference.shape))} "
+            f"frame, but {arguments.file} is {shape[0]} x {shape[1]}"
+        )
+    return reference
+
+
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.features import extract
     from taxel.io import read_frame
@@ -270,13 +286,16 @@ def _run(arguments: argparse.Namespace) -> int:
             "grid, give its pitch with --pitch"
         )
     pose = None if arguments.pose is None else _load_pose(Path(arguments.pose))
+    reference = None if arguments.reference is None else _load_reference(arguments, image.shape)
+    integers = np.issubdtype(stored.dtype, np.integer)  # (their noise is read in code steps)
     features = extract(
-        image,
+        stored if integers else image,
         pitch,
         pose=pose,
         calibrated=arguments.calibrated,
         noise=arguments.noise,
         defects=arguments.defects,
+        reference=reference,
     )
     if arguments.figure:  # first: a figure that cannot be written stops before any output
         from taxel.viz import plot_features
@@ -345,7 +364,15 @@ def register(commands: Any) -> None:
         "By default they are removed from a raw frame of a sensor whose cover is 3 or more "
         "taxels deep (--sensor vhdta128) and kept otherwise: never removed from a --calibrated "
         "image, whose calibration has removed the sensor's fixed defects, and which as a "
-        "pressure map from `taxel reconstruct` can be as sparse as the load",
+        "pressure map from `taxel reconstruct` can be as sparse as the load, nor when a "
+        "--reference is subtracted",
+    )
+    parser.add_argument(
+        "--reference",
+        metavar="FILE",
+        help="the sensor's unloaded frame (or the mean of several), subtracted first: it "
+        "removes the fixed pattern no contact makes (an FTIR glass's scratches, each taxel's "
+        "offset), so that a frame at rest reads as no contact",
     )
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
     parser.add_argument("--figure", metavar="PNG", help="also draw the features to this file")

@@ -215,6 +215,7 @@ def extract(
     texture_sigma: float = 2.0,
     defects: bool | None = None,
     noise: float | str | None = None,
+    reference: Any = None,
 ) -> TactileFeatures:
     """Every passive feature of one tactile image, located on the sensor and in the base frame.
 
@@ -252,6 +253,10 @@ def extract(
         array then reads as noise), except on a raw frame of a sensor too small to give it
         (under 16 interior taxels), which takes the sensor's. "sensor": the noise of the
         sensor's raw frames (`sensor_noise`) on any raw frame (see `prepare`).
+    reference : array_like, shape (rows, cols), optional
+        The sensor's unloaded frame, or the mean of several, subtracted first (a tare):
+        it removes the fixed pattern no contact makes (an FTIR glass's scratches, taxel
+        offsets), so that blank frames read as blank; `defects` then defaults to False.
 
     Returns
     -------
@@ -286,6 +291,7 @@ def extract(
         baseline=baseline,
         defects=defects,
         noise=noise,
+        reference=reference,
     )
     point_size = check_positive("point_size", point_size)
     texture_sigma = check_range("texture_sigma", texture_sigma, 0.0, 20.0, low_inclusive=False)

@@ -32,14 +32,19 @@ from typing import Any, cast
 import cv2
 import numpy as np
 
-from taxel._validation import check_finite, check_flag, check_positive, check_range
+from taxel._validation import check_finite, check_flag, check_range
+from taxel.features._noise import (
+    RESIDUAL_QUANTUM,
+    laplacian_residual,
+    smoothing_gain,
+    taxel_noise,
+)
 from taxel.features._sensor import (
     check_image_shape,
     cover_blur,
     cover_depth,
     hexagonal_resampled,
     pitch_pair,
-    sensor_noise,
 )
 
 __all__ = ["Prepared", "prepare"]
@@ -65,13 +70,6 @@ _DEFECT_DEPTH = 3.0
 _DEFECT_KERNEL = np.ones((3, 3), np.uint8)
 # flood fill: 8-connected, writing 1 into its mask
 _FILL_8 = 8 | (1 << 8)
-# An image with fewer interior taxels cannot estimate its own noise (a contact covers most
-# of a 4 x 4 array's 4); a raw frame of a known sensor then takes the sensor's noise.
-_SMALL_IMAGE = 16
-# MAD of a standard normal, and the noise gain of `x - mean of its 4 neighbours`.
-_MAD = 1.4826
-_LAPLACE_GAIN = math.sqrt(1.25)
-_LAPLACE_KERNEL = np.array([[0, -0.25, 0], [-0.25, 1, -0.25], [0, -0.25, 0]], np.float32)
 # Integer images of at most this many bits: their Laplacian residual is exact in float32.
 _EXACT_BITS = 16
 # The features compute in float32 (which ends at 3.4e38): values up to 1e15 keep their
@@ -121,6 +119,9 @@ class Prepared:
         (see `residual_step`): the noise, wherever the signal is locally linear.
     residual_step : int
         Row step of `residual` (2 on images over 64 x 64, else 1).
+    residual_quantum : float
+        The step the values of `residual` are multiples of (1/4 for an integer image), or
+        0 (see `noise_from_residual`).
     outlines : tuple of numpy.ndarray or None
         Outlines of the contact (outer boundaries and hole walls, every taxel, as
         `cv2.findContours` gives them), when segmentation found them; else None.
@@ -149,6 +150,7 @@ class Prepared:
     defects_removed: bool = False
     residual: np.ndarray | None = None
     residual_step: int = 1
+    residual_quantum: float = 0.0
     outlines: tuple[np.ndarray, ...] | None = None
     memo: dict[Any, Any] = field(default_factory=dict, repr=False, compare=False)
     blur: float = 0.0
@@ -196,28 +198,28 @@ def component_outlines(
     return (*holes, outlines[index])
 
 
-def _as_image(image: Any) -> np.ndarray:
-    """Validate a 2-D numeric image and return it as (contiguous) float32."""
+def _as_image(image: Any, name: str = "image") -> np.ndarray:
+    """Validate a 2-D numeric image (the parameter `name`) and return it as float32."""
     array = np.asarray(image)
     kind = array.dtype.kind
     if kind not in "biuf":
-        raise TypeError(f"`image` must be numeric, got dtype {array.dtype}")
+        raise TypeError(f"`{name}` must be numeric, got dtype {array.dtype}")
     if array.ndim != 2:
-        raise ValueError(f"`image` must be 2-D (rows, cols), got shape {array.shape}")
+        raise ValueError(f"`{name}` must be 2-D (rows, cols), got shape {array.shape}")
     if min(array.shape) < 3:
-        raise ValueError(f"`image` must be at least 3x3 taxels, got shape {array.shape}")
+        raise ValueError(f"`{name}` must be at least 3x3 taxels, got shape {array.shape}")
     if (kind == "f" and array.dtype.itemsize >= 4) or array.dtype.itemsize == 8:
-        _check_size(array)  # (smaller types cannot reach the limit)
+        _check_size(array, name)  # (smaller types cannot reach the limit)
     image32 = np.ascontiguousarray(array, dtype=np.float32)
     # integers are finite; a float image is when its sum is (one pass instead of two)
     if kind == "f" and not math.isfinite(float(image32.sum(dtype=np.float64))):
         bad = int(image32.size - np.count_nonzero(np.isfinite(image32)))
-        raise ValueError(f"`image` must be finite everywhere, got {bad} NaN or inf value(s)")
+        raise ValueError(f"`{name}` must be finite everywhere, got {bad} NaN or inf value(s)")
     return image32
 
 
-def _check_size(array: np.ndarray) -> None:
-    """Raise when a value of `array` lies beyond +-`_LARGEST_VALUE` (or is inf)."""
+def _check_size(array: np.ndarray, name: str) -> None:
+    """Raise when a value of `array` (the parameter `name`) lies beyond +-`_LARGEST_VALUE`."""
     if array.dtype.kind == "f" and array.dtype.itemsize <= 8:
         low, high = cv2.minMaxLoc(np.ascontiguousarray(array))[:2]  # (one pass, no warning)
     else:  # 64-bit integers as Python integers (abs of the lowest int64 overflows), long double
@@ -227,99 +229,28 @@ def _check_size(array: np.ndarray) -> None:
         finite = np.isfinite(array)
         if not finite.all():  # an inf, or NaN beside a large value
             bad = int(array.size - np.count_nonzero(finite))
-            raise ValueError(f"`image` must be finite everywhere, got {bad} NaN or inf value(s)")
+            raise ValueError(f"`{name}` must be finite everywhere, got {bad} NaN or inf value(s)")
         raise ValueError(
-            f"`image` values must lie within +-{_LARGEST_VALUE:.0e} (the features compute in "
+            f"`{name}` values must lie within +-{_LARGEST_VALUE:.0e} (the features compute in "
             f"float32), got a value of magnitude {float(largest):.3g}"
         )
 
 
-def laplacian_residual(image: np.ndarray, step: int = 1, *, whole: bool = False) -> np.ndarray:
-    """``x - mean(4 neighbours)`` on the image's interior, on every `step`-th row.
-
-    Shape (len(range(1, rows - 1, step)), cols - 2): rows 1, 1 + step, ... of the image.
-    `whole`: the image holds integers of at most 16 bits; every partial sum is then an
-    exact multiple of 1/4 in float32, so one filter over every row, adding in its own
-    order, gives the same residual in a third of the time of the four sums on the rows.
-    """
-    end = image.shape[0] - 1
-    if whole:
-        return cv2.filter2D(image, -1, _LAPLACE_KERNEL)[1:end:step, 1:-1]
-    around = image[0 : end - 1 : step, 1:-1] + image[2 : end + 1 : step, 1:-1]
-    around += image[1:end:step, :-2]
-    around += image[1:end:step, 2:]
-    around *= np.float32(0.25)
-    return np.subtract(image[1:end:step, 1:-1], around, out=around)
-
-
-def noise_from_residual(residual: np.ndarray) -> float:
-    """Noise sigma from Laplacian residuals (any shape): 1.4826 MAD / sqrt(1.25)."""
-    values = np.abs(residual).ravel()  # a new array: partitioned in place below
-    if values.size == 0:
-        return 0.0
-    middle = values.size // 2
-    values.partition(middle)
-    return _MAD * float(values[middle]) / _LAPLACE_GAIN
-
-
-def _noise_sigma(residual: np.ndarray) -> float:
-    """Noise sigma of an image, from the median absolute deviation of a discrete Laplacian.
-
-    ``x - mean(4 neighbours)`` cancels any locally linear signal (the flanks of a contact)
-    and leaves white noise of sigma n as sqrt(1.25) n; its median absolute value is robust
-    to the few taxels where the signal curves. On images over 64 x 64 the residual is taken
-    on every other row and the median over every other column, which is as good (the
-    noise is white) and costs a quarter.
-    """
-    if residual.shape[1] > 64:
-        residual = residual[:, ::2]
-    return noise_from_residual(residual)
-
-
-def _smoothing_gain(smoothing: float) -> float:
-    """Noise sigma left by a Gaussian of sigma `smoothing` [taxels] on white noise of sigma 1."""
-    if smoothing == 0:
-        return 1.0
-    # a 2-D Gaussian of sigma s has sum(g^2) = 1 / (4 pi s^2) (continuous limit)
-    return min(1.0 / (2.0 * math.sqrt(math.pi) * smoothing), 1.0)
-
-
-def _raw_noise(
-    noise: Any, sensor_or_pitch: Any, calibrated: bool, residual: np.ndarray, interior: int
-) -> float:
-    """The noise sigma of one taxel [image units]: as given, the sensor's, or estimated.
-
-    By default (None) estimated from the image's Laplacian residual, unless the image is a
-    raw frame of a sensor that reads frames and has too few interior taxels for the
-    estimate (`_SMALL_IMAGE`): then the sensor's own (`sensor_noise`).
-    """
-    if noise is None:
-        small = interior < _SMALL_IMAGE and not calibrated
-        if small and callable(getattr(sensor_or_pitch, "frame_from_pressure", None)):
-            return sensor_noise(sensor_or_pitch)
-        return _noise_sigma(residual)
-    if isinstance(noise, str):
-        if noise != "sensor":
-            raise ValueError(f"`noise` must be a number or 'sensor', got {noise!r}")
-        if calibrated:
-            raise ValueError(
-                "`noise='sensor'` is the noise of the sensor's raw frames, not of a calibrated "
-                "image: give its noise in the image's units, or leave it to be estimated"
-            )
-        return sensor_noise(sensor_or_pitch)
-    return check_positive("noise", noise)
-
-
 def removes_defects(
-    sensor_or_pitch: Any, defects: bool | None, *, calibrated: bool = False
+    sensor_or_pitch: Any,
+    defects: bool | None,
+    *,
+    calibrated: bool = False,
+    referenced: bool = False,
 ) -> bool:
     """Whether defects are removed: as asked, or by default (None) as the module notes say.
 
-    By default: in an uncalibrated image of a sensor whose cover is >= 3 taxels deep.
+    By default: in an uncalibrated image of a sensor whose cover is >= 3 taxels deep, unless
+    an unloaded reference frame was subtracted (`referenced`), which removed them already.
     """
     if defects is not None:
         return check_flag("defects", defects)
-    if calibrated:
+    if calibrated or referenced:
         return False
     depth = cover_depth(sensor_or_pitch)
     if depth is None:
@@ -336,6 +267,7 @@ def prepare(
     baseline: float | None = None,
     defects: bool | None = None,
     noise: float | str | None = None,
+    reference: Any = None,
 ) -> Prepared:
     """Validate, clean, smooth and segment a tactile image (the first step of every feature).
 
@@ -370,6 +302,12 @@ def prepare(
         frames (`sensor_noise`). "sensor" takes the sensor's noise on any raw frame; it
         is only as right as the sensor's model: frames noisier than the model then show
         contacts in their noise.
+    reference : array_like, shape (rows, cols), optional
+        The sensor's unloaded frame (better, the mean of several), subtracted first: a tare
+        that takes away what no contact makes (the scratches of an FTIR sensor's glass,
+        each taxel's offset, uneven lighting), which the minimum-based baseline and the
+        opening cannot, so that a blank frame reads as blank. `defects` then defaults to
+        False. Its noise adds to the frame's (by 1/n of its variance for a mean of n).
 
     Returns
     -------
@@ -384,17 +322,33 @@ def prepare(
     """
     given = _as_image(image)
     check_image_shape(given.shape, sensor_or_pitch)
+    dtype = np.asarray(image).dtype  # (a raw frame: small integers, as it was given)
+    integers = dtype.kind in "biu"
+    whole = integers and dtype.itemsize * 8 <= _EXACT_BITS
+    if reference is not None:
+        tare = _as_image(reference, "reference")
+        if tare.shape != given.shape:
+            raise ValueError(
+                f"`reference` must have the image's shape {given.shape}, got {tare.shape}"
+            )
+        given = cv2.subtract(given, tare)
+        stored = np.asarray(reference).dtype  # (integers of 16 bits differ in 17: exact)
+        integers = integers and stored.kind in "biu"
+        whole = whole and integers and stored.itemsize * 8 <= _EXACT_BITS
     values = hexagonal_resampled(given, sensor_or_pitch)
+    integers = integers and values is given
+    whole = whole and values is given
     pitch = pitch_pair(sensor_or_pitch)
     smoothing = check_range("smoothing", smoothing, 0.0, 20.0)
     calibrated = check_flag("calibrated", calibrated)
     step = 2 if values.shape[0] > 64 and values.shape[1] > 64 else 1
-    dtype = np.asarray(image).dtype  # (a raw frame: small integers, as it was given)
-    whole = values is given and dtype.kind in "biu" and dtype.itemsize * 8 <= _EXACT_BITS
     residual = laplacian_residual(values, step, whole=whole)
     interior = (values.shape[0] - 2) * (values.shape[1] - 2)
-    raw_noise = _raw_noise(noise, sensor_or_pitch, calibrated, residual, interior)
-    cleaned = removes_defects(sensor_or_pitch, defects, calibrated=calibrated)
+    quantum = RESIDUAL_QUANTUM if integers else 0.0
+    raw_noise = taxel_noise(noise, sensor_or_pitch, calibrated, residual, interior, quantum)
+    cleaned = removes_defects(
+        sensor_or_pitch, defects, calibrated=calibrated, referenced=reference is not None
+    )
     if cleaned:
         values = cv2.morphologyEx(values, cv2.MORPH_OPEN, _DEFECT_KERNEL)
     if smoothing > 0:
@@ -402,7 +356,7 @@ def prepare(
         smooth = cv2.GaussianBlur(values, (reach, reach), smoothing, borderType=cv2.BORDER_REFLECT)
     else:
         smooth = values
-    noise = raw_noise * _smoothing_gain(smoothing)
+    noise = raw_noise * smoothing_gain(smoothing)
     lowest, peak, _, peak_at = cv2.minMaxLoc(smooth)
     level = lowest if baseline is None else check_finite("baseline", baseline)
     if abs(level) > _LARGEST_VALUE:
@@ -415,7 +369,8 @@ def prepare(
         "image": values, "smooth": smooth, "pitch": pitch, "baseline": level, "noise": noise,
         "contrast": contrast, "raw_noise": raw_noise, "low": low, "high": high,
         "calibrated": calibrated, "peak": peak, "defects_removed": cleaned,
-        "residual": residual, "residual_step": step, "blur": cover_blur(sensor_or_pitch),
+        "residual": residual, "residual_step": step, "residual_quantum": quantum,
+        "blur": cover_blur(sensor_or_pitch),
         "cover_depth": cover_depth(sensor_or_pitch) or 0.0,
     }  # fmt: skip
     if contrast <= max(K_HIGH * noise, floor):

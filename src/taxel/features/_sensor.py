@@ -101,7 +101,7 @@ def sensor_noise(sensor: Any) -> float:
     >>> round(sensor_noise(make_sensor("capacitive4x4")), 1)  # 16-bit codes
     33.2
     """
-    from taxel.features._image import laplacian_residual, noise_from_residual
+    from taxel.features._noise import laplacian_residual, noise_from_residual
 
     if not callable(getattr(sensor, "frame_from_pressure", None)):
         raise TypeError(
@@ -116,15 +116,20 @@ def sensor_noise(sensor: Any) -> float:
     rest = np.zeros(sensor.load_grid.shape)
     rng = np.random.default_rng(0)
     residuals = []
+    quantum = 0.0
     for _ in range(count):
-        raw = np.asarray(sensor.frame_from_pressure(rest, rng=rng).raw, dtype=np.float32)
+        given = np.asarray(sensor.frame_from_pressure(rest, rng=rng).raw)
+        raw = given.astype(np.float32)
         if raw.ndim != 2:
             raise ValueError(
                 f"`noise='sensor'` needs a sensor whose raw frames are images, got frames of "
                 f"shape {raw.shape}"
             )
-        residuals.append(laplacian_residual(hexagonal_resampled(raw, sensor)).ravel())
-    noise = noise_from_residual(np.concatenate(residuals))
+        resampled = hexagonal_resampled(raw, sensor)
+        if given.dtype.kind in "biu" and resampled is raw:  # residuals: multiples of 1/4
+            quantum = 0.25
+        residuals.append(laplacian_residual(resampled).ravel())
+    noise = noise_from_residual(np.concatenate(residuals), quantum=quantum)
     _NOISE_CACHE[sensor] = noise
     return noise
 

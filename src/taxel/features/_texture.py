@@ -11,7 +11,8 @@ import cv2
 import numpy as np
 
 from taxel._validation import check_range
-from taxel.features._image import Prepared, noise_from_residual, prepare
+from taxel.features._image import Prepared, prepare
+from taxel.features._noise import noise_from_residual
 from taxel.features._spectrum import OCTAVES, ripple_spectrum
 from taxel.features._window import WHOLE_IMAGE, contact_area, contact_box, contact_window
 
@@ -180,7 +181,8 @@ def _contact_noise(prepared: Prepared) -> float:
     """Noise sigma of the taxels in the contact, from every 4th of their residuals (0 if none)."""
     if prepared.residual is None:
         return 0.0
-    return noise_from_residual(_contact_residual(prepared)[::4])
+    residual = _contact_residual(prepared)[::4]
+    return noise_from_residual(residual, quantum=prepared.residual_quantum)
 
 
 def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[int, float]:
