@@ -44,10 +44,30 @@ def test_cross_section_of_a_tilted_ridge():
     assert section.offset_m == pytest.approx(0.0, abs=0.05e-3)
     # a line through the centre of a 16 mm square at 30 degrees crosses 16 / cos 30 mm of it
     assert section.chord_m == pytest.approx(16e-3 / math.cos(math.radians(30)), rel=1e-6)
-    assert section.force_per_length == pytest.approx(8.0 / section.chord_m)
+    # the ridge runs the whole chord at one height: it carries the load all along, less
+    # the half taxel at either end between the border taxels' centres and the border
+    assert section.loaded_length_m == pytest.approx(section.chord_m, rel=0.025)
+    assert section.force_per_length == pytest.approx(8.0 / section.loaded_length_m)
     # FWHM of a Gaussian of sigma 2 taxels: 4.71 taxels (bilinear sampling adds a little)
     assert section.descriptors["width_50"] / 0.25e-3 == pytest.approx(4.71, abs=0.15)
     assert section.descriptors["peak"] == pytest.approx(80.0, abs=2.5)  # sampled off the crest
+
+
+def test_the_loaded_length_is_cut_in_the_corners_and_ignores_scratches():
+    # along the diagonal the ridge's imprint is cut by two sides in each corner: the
+    # length that carries the load is shorter than the chord by about the imprint's width
+    diagonal = edge_cross_section(_ridge(45.0), 0.25e-3, normal_force=8.0)
+    assert diagonal.chord_m == pytest.approx(16e-3 * math.sqrt(2))
+    assert 0.93 < diagonal.loaded_length_m / diagonal.chord_m < 0.96
+    # bright streaks (glass scratches) crossing the edge add nothing: each sample counts
+    # up to the mean cross-section, which the trimmed mean keeps clear of them
+    ridge = _ridge(0.0)
+    clean = edge_cross_section(ridge, 0.25e-3, normal_force=8.0)
+    rows, cols = np.mgrid[:64, :64]
+    for shift in (-20, 5, 30):
+        ridge[np.abs(rows - 1.7 * (cols - 32 - shift)) < 1.5] += 25.0
+    scratched = edge_cross_section(ridge, 0.25e-3, normal_force=8.0)
+    assert scratched.loaded_length_m == pytest.approx(clean.loaded_length_m, rel=2e-3)
 
 
 def test_an_edge_too_near_the_border_is_refused_saying_so():
@@ -100,6 +120,11 @@ def test_table_round_trips_through_a_file(table, tmp_path):
     assert EdgeRadiusTable.load(tmp_path / "old.json").correlation is None
     with pytest.raises(ValueError, match=r"`correlation` must be a \(12, 12\) correlation"):
         EdgeRadiusTable(**{**table.__dict__, "correlation": 2 * table.correlation})
+    # a version 1 table took the chord for the loaded length: its loads do not compare
+    data["version"] = 1
+    (tmp_path / "v1.json").write_text(json.dumps(data))
+    with pytest.raises(ValueError, match="holds a version 1 table, this is version 2"):
+        EdgeRadiusTable.load(tmp_path / "v1.json")
     with pytest.raises(ValueError, match="is not an edge radius table"):
         (tmp_path / "other.json").write_text("{}")
         EdgeRadiusTable.load(tmp_path / "other.json")

@@ -202,6 +202,7 @@ class EdgeRadiusResult:
                     "normal_force_n": section.normal_force,
                     "force_per_length_n_per_m": section.force_per_length,
                     "chord_m": section.chord_m,
+                    "loaded_length_m": section.loaded_length_m,
                     "angle_rad": section.angle_rad,
                     "offset_m": section.offset_m,
                     "descriptors": dict(section.descriptors),

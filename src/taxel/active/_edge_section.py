@@ -52,11 +52,11 @@ class EdgeCrossSection:
         Signed distance of the line from the sensor's centre along its normal
         (-sin, cos) [m].
     chord_m : float
-        Length of the line inside the active area [m]: the length that carries the force.
+        Length of the line inside the active area [m].
     normal_force : float
         Force of the press [N].
     force_per_length : float
-        normal_force / chord_m [N/m], the line load that sets the cross-section.
+        normal_force / loaded_length_m [N/m], the line load that sets the cross-section.
     positions : numpy.ndarray
         Distances across the line at which the profile is sampled [m].
     profile : numpy.ndarray
@@ -69,6 +69,11 @@ class EdgeCrossSection:
         ``area`` (integral of the profile [units m]), ``peak`` [units], ``width_25``,
         ``width_50``, ``width_75`` (widths at 25, 50 and 75 % of the peak [m]) and
         ``arc_radius`` (radius of the arc fitted to the top of the profile [m]).
+    loaded_length_m : float, optional
+        The length of edge that carries the force [m], read off the imprint: its signal
+        summed along the whole edge over the cross-section's. Shorter than the chord, since
+        the load falls off where the edge leaves the pad, and by how much depends on how
+        it leaves it (square to a side, or into a corner). None: the chord.
     """
 
     angle_rad: float
@@ -81,6 +86,7 @@ class EdgeCrossSection:
     baseline: float
     n_lines: int
     descriptors: dict[str, float] = field(default_factory=dict)
+    loaded_length_m: float | None = None
 
     def vector(self) -> np.ndarray:
         """The descriptors as an array in the order of `SECTION_DESCRIPTORS`."""
@@ -141,6 +147,41 @@ def _sample(
         image, [row[inside].ravel(), col[inside].ravel()], order=1, mode="nearest"
     )
     return values.reshape(-1, across.size), along[inside]
+
+
+def _loaded_length(
+    image: np.ndarray,
+    pitch: tuple[float, float],
+    line: tuple[float, float],
+    across: np.ndarray,
+    profile: np.ndarray,
+    ceiling: float,
+) -> float:
+    """Length of edge that carries the load [m]: the imprint's signal over the profile's.
+
+    Every line normal to the edge, one taxel apart along the whole edge (outside the image
+    reads no signal), is summed across and the sum integrated along the edge; over the area
+    of the mean `profile` (a line's worth) this is the length of a uniform load of the same
+    total. Each sample is capped at the profile plus `ceiling`, so that bright defects
+    (glass scratches) along or across the edge add nothing: the imprint itself only falls
+    below the profile towards the edge's ends.
+    """
+    rows, cols = image.shape
+    angle, offset = line
+    step = min(pitch)
+    reach = math.hypot(rows * pitch[0], cols * pitch[1]) / 2
+    along = np.arange(-reach, reach + step / 2, step)
+    direction = np.array([math.cos(angle), math.sin(angle)])
+    normal = np.array([-math.sin(angle), math.cos(angle)])
+    points = offset * normal + along[:, None, None] * direction + across[None, :, None] * normal
+    col = points[..., 0] / pitch[1] + (cols - 1) / 2
+    row = points[..., 1] / pitch[0] + (rows - 1) / 2
+    values = ndimage.map_coordinates(
+        image, [row.ravel(), col.ravel()], order=1, mode="constant", cval=0.0
+    ).reshape(row.shape)
+    section = profile.clip(0.0, None)
+    capped = np.minimum(values, section + ceiling)
+    return float(capped.sum() * step / section.sum())
 
 
 def _width(positions: np.ndarray, profile: np.ndarray, level: float) -> float:
@@ -244,9 +285,17 @@ def edge_cross_section(
        the peak, and the radius of a circle fitted (`fit_circle`) to its top half, the
        intensity scaled to a height of 1 mm at the peak.
 
-    The force is shared by the whole chord of the edge across the active area, so the
-    cross-section depends on the line load F / chord rather than on F alone; the edge
-    radius table interpolates in it.
+    5. The loaded length: the imprint's signal summed over every line normal to the edge,
+       one taxel apart along its whole chord, over the profile's area (each sample capped
+       at the profile plus three standard deviations of the lines about it, so that glass
+       scratches add nothing).
+
+    The force is shared along the edge, so the cross-section depends on the line load
+    F / loaded length rather than on F alone; the edge radius table interpolates in it.
+    The load falls off over the last few millimetres where the edge leaves the pad, by
+    an amount that depends on how it leaves it: an edge along the pad's diagonal ends in
+    two corners and carries about 6 % more load per length in its middle than its chord
+    gives, one at another angle 3-4 %. The loaded length follows that; the chord does not.
 
     Examples
     --------
@@ -334,15 +383,21 @@ def edge_cross_section(
         "width_75": _width(across, profile, 0.75 * peak),
         "arc_radius": _arc_radius(across, profile, peak),
     }
+    # the cap over the profile: three standard deviations of a line's samples about it
+    spread = 1.4826 * float(np.median(np.abs(values - mean)))
+    loaded = _loaded_length(
+        array - baseline, pitch, (angle, offset), across, profile, 3.0 * spread
+    )
     return EdgeCrossSection(
         angle_rad=float(angle),
         offset_m=float(offset),
         chord_m=float(chord),
         normal_force=normal_force,
-        force_per_length=normal_force / chord,
+        force_per_length=normal_force / loaded,
         positions=across,
         profile=profile,
         baseline=baseline,
         n_lines=int(values.shape[0]),
         descriptors=descriptors,
+        loaded_length_m=loaded,
     )

@@ -5,9 +5,9 @@ method is to take some preferred application forces ..., and press known edge ra
 the sensor. Once such a table is constructed, selecting the best fit is a simple matter."
 
 The table holds, for each known radius and each force, the cross-section descriptors of
-`edge_cross_section` as a straight line in the logarithm of the line load (the force per
-length of edge inside the active area, which changes with the edge's angle on a square
-sensor), and the spread of each descriptor about those lines (its noise).
+`edge_cross_section` as a straight line in the logarithm of the line load (the force over
+the length of edge that carries it, which changes with the edge's angle and position on a
+square sensor), and the spread of each descriptor about those lines (its noise).
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ from taxel.active._json_files import read_json, write_json
 __all__ = ["EdgeRadiusTable", "fit_edge_radius_table"]
 
 _FORMAT = "taxel.edge_radius_table"
-_VERSION = 1
+_VERSION = 2  # 1: line loads over the chord, not the loaded length; not comparable
 _DEGREE = 3  # of the polynomial in ln(radius) through the table's radii
 _GRID = 2001  # points of the log-radius grid searched between the table's ends
 _FLOOR = 1e-3  # smallest descriptor spread, as a fraction of the descriptor's range
@@ -252,6 +252,12 @@ class EdgeRadiusTable:
             ),
             "an edge radius table",
         )
+        if data.get("version", 1) != _VERSION:
+            raise ValueError(
+                f"`path` {str(source)!r} holds a version {data.get('version', 1)} table, this "
+                f"is version {_VERSION}: its line loads are the force over the edge's chord, "
+                "not over the length that carries it; build the table again"
+            )
         if data.get("descriptors") != list(SECTION_DESCRIPTORS):
             raise ValueError(f"`path` {str(source)!r} holds other descriptors than this version")
         return cls(
@@ -294,8 +300,9 @@ def fit_edge_radius_table(
 
     Notes
     -----
-    For each force and descriptor, with x = ln(F / chord / q_ref) and q_ref the force over
-    the sensor's mean chord of the table presses, the model is
+    For each force and descriptor, with x = ln(q / q_ref), q the press's line load
+    (`EdgeCrossSection.force_per_length`) and q_ref the geometric mean of the table
+    presses' line loads, the model is
     ``descriptor = a(R) + (s0 + s1 ln R) x``: one intercept per radius and a slope that
     changes smoothly with the radius, fitted by least squares over all presses. The
     descriptor's spread is the residual standard deviation (floored at 0.1 % of its range
