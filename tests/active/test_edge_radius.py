@@ -286,3 +286,51 @@ def test_the_uncertainty_counts_descriptors_that_err_together_once():
     # counted as six independent ones, it is too small by up to sqrt(1 + 5 x 0.5) = 1.9
     assert 0.85 < np.std(z_correlated) < 1.2
     assert np.std(z_independent) > 1.5
+
+
+@pytest.fixture(scope="module")
+def default_table():
+    # the default table: seven radii, each at 0, 15, 30 and 45 degrees (2-4 s)
+    return build_edge_radius_table(rng=0)
+
+
+@pytest.mark.parametrize("radius", [3.9e-3, 5.6e-3, 8.2e-3])
+def test_an_edge_along_the_diagonal_through_the_centre_is_not_read_too_large(
+    default_table, radius
+):
+    # along the diagonal the edge ends in two corners and carries ~6 % more load per
+    # length in its middle than force / chord (3.5 % at other angles): over the chord,
+    # these edges read 0.12, 0.14 and 0.26 mm too large (2.5-4 stated uncertainties);
+    # over the loaded length within 0.08 mm (measured, seeds 0-3: at most 0.065 mm, 1.3 u)
+    for seed in (0, 1):
+        result = measure_edge_radius(radius, table=default_table, angle=math.pi / 4, rng=seed)
+        error = result.radius - radius
+        assert abs(error) < 0.08e-3
+        assert abs(error) < 2 * result.radius_uncertainty
+        assert result.message == "matched"
+
+
+@pytest.mark.parametrize("angle_deg", [0.0, 90.0])
+def test_an_edge_along_the_rows_or_columns_is_measured(default_table, angle_deg):
+    # the grid-aligned edges on vhdta128: measured within 0.1 mm and 2 stated uncertainties
+    angle = math.radians(angle_deg)
+    for radius, offset in [(1.8e-3, 0.0), (5.6e-3, 0.0), (5.6e-3, 3e-3)]:
+        position = (-math.sin(angle) * offset, math.cos(angle) * offset)
+        result = measure_edge_radius(
+            radius, table=default_table, angle=angle, position=position, rng=2
+        )
+        error = result.radius - radius
+        assert abs(error) < 0.1e-3
+        assert abs(error) < 2 * result.radius_uncertainty
+
+
+def test_a_coarse_array_says_an_edge_along_its_rows_is_not_resolved():
+    # resistive16's 2 mm taxels: an edge along the rows reads as where its crest falls on
+    # them (between two rows through the centre: ~9 mm whatever its radius); the table's
+    # residual widens the uncertainty to cover it and the message says so
+    table = build_edge_radius_table(sensor="resistive16", rng=0)
+    result = measure_edge_radius(5e-3, table=table, sensor="resistive16", rng=0)
+    assert result.radius > 8e-3
+    assert abs(result.radius - 5e-3) < 2 * result.radius_uncertainty
+    assert result.message.startswith("not resolved: +-")
+    assert "2 mm taxels of resistive16 may be too coarse" in result.message

@@ -61,6 +61,7 @@ _DOWN = np.diag([1.0, -1.0, -1.0])  # the sensor facing the table
 _EDGE_TOP = 0.02  # height of the edge objects' crest above the table [m]
 _STANDOFF = 5e-3  # approach height of the sensor above the crest [m]
 OFFSET = 4e-3
+_RESOLVED = 0.25  # largest relative uncertainty of an estimate reported as "matched"
 
 
 def make_edge(
@@ -228,7 +229,10 @@ class EdgeRadius:
     (`edge_cross_section`: edges, line fit, average normal to the line, widths, arc fit).
     The table predicts every known radius's cross-section at the measured line loads; the
     estimate is interpolated between them (`EdgeRadiusTable.estimate`) and the nearest
-    table radius is reported with it. A bad command or an image without an edge raises a
+    table radius is reported with it. The message says "not resolved" when the
+    uncertainty exceeds a quarter of the estimate: on a coarse array (resistive16's 2 mm
+    taxels) an edge along the rows reads as its crest's phase on the taxels more than as
+    its radius. A bad command or an image without an edge raises a
     `ValueError` after the finger has retracted.
     """
 
@@ -285,6 +289,12 @@ class EdgeRadius:
             message = "at the end of the table: the edge may lie outside its radii"
         elif residual > 25.0:
             message = f"poor match (residual {residual:.3g}): the edge is unlike the table's"
+        elif not uncertainty <= _RESOLVED * radius:
+            message = (
+                f"not resolved: +-{uncertainty * 1e3:.2g} mm on {radius * 1e3:.2g} mm; the "
+                f"{max(probe.sensor.taxel_pitch) * 1e3:.2g} mm taxels of "
+                f"{probe.sensor.name} may be too coarse for this edge's cross-section"
+            )
         else:
             message = "matched"
         return EdgeRadiusResult(

@@ -171,6 +171,8 @@ class EdgeRadiusTable:
         errors are correlated as in the table's residuals (`correlation`): with g the
         change of the standardised descriptors per unit of ln(radius) at the estimate,
         var(ln R) = g' C g / (g' g)^2, which is 1 / (g' g) for independent descriptors.
+        When the residual exceeds 1 the descriptors differ from the nearest table edge by
+        more than the table's spreads, and the uncertainty is multiplied by its square root.
         """
         measured, loads = self._measured(sections)
         predicted = self.predict(loads)
@@ -199,6 +201,11 @@ class EdgeRadiusTable:
                 uncertainty = math.sqrt(max(correlated, 0.0)) / information
         radius = math.exp(log_radius)
         residual = float(total[best] / standardised.shape[1])
+        # cross-sections unlike every table radius's (a glass scratch along the edge, an
+        # array too coarse for its phase on the taxels to average out) err by more than
+        # the table's spreads say: widen the uncertainty by the square root of the
+        # residual (the Birge ratio) when it exceeds 1
+        uncertainty *= math.sqrt(max(residual, 1.0))
         return radius, radius * uncertainty, residual
 
     def _measured(self, sections: Sequence[EdgeCrossSection]) -> tuple[np.ndarray, np.ndarray]:
