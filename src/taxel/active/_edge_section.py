@@ -109,6 +109,30 @@ def _chord(angle: float, offset: float, half_x: float, half_y: float) -> float:
     return max(high - low, 0.0)
 
 
+def _normal_lines(
+    shape: tuple[int, ...],
+    pitch: tuple[float, float],
+    angle: float,
+    offset: float,
+    across: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Lines normal to the edge, one taxel apart along all of it: (along, rows, columns).
+
+    `along` [m] is each line's position along the edge; the rows and columns (fractional
+    image indices, shape (n_lines, n_across)) are where its `across` samples fall.
+    """
+    rows, cols = shape
+    step = min(pitch)
+    reach = math.hypot(rows * pitch[0], cols * pitch[1]) / 2
+    along = np.arange(-reach, reach + step / 2, step)
+    direction = np.array([math.cos(angle), math.sin(angle)])
+    normal = np.array([-math.sin(angle), math.cos(angle)])
+    points = offset * normal + along[:, None, None] * direction + across[None, :, None] * normal
+    col = points[..., 0] / pitch[1] + (cols - 1) / 2
+    row = points[..., 1] / pitch[0] + (rows - 1) / 2
+    return along, row, col
+
+
 def _sample(
     image: np.ndarray,
     pitch: tuple[float, float],
@@ -118,14 +142,7 @@ def _sample(
 ) -> tuple[np.ndarray, np.ndarray]:
     """Image values on lines normal to the edge, one taxel apart; (n_lines, n_across)."""
     rows, cols = image.shape
-    step = min(pitch)
-    reach = math.hypot(rows * pitch[0], cols * pitch[1]) / 2
-    along = np.arange(-reach, reach + step / 2, step)
-    direction = np.array([math.cos(angle), math.sin(angle)])
-    normal = np.array([-math.sin(angle), math.cos(angle)])
-    points = offset * normal + along[:, None, None] * direction + across[None, :, None] * normal
-    col = points[..., 0] / pitch[1] + (cols - 1) / 2
-    row = points[..., 1] / pitch[0] + (rows - 1) / 2
+    along, row, col = _normal_lines(image.shape, pitch, angle, offset, across)
     inside = (
         (col >= _MARGIN)
         & (col <= cols - 1 - _MARGIN)
@@ -166,16 +183,8 @@ def _loaded_length(
     (glass scratches) along or across the edge add nothing: the imprint itself only falls
     below the profile towards the edge's ends.
     """
-    rows, cols = image.shape
-    angle, offset = line
+    _, row, col = _normal_lines(image.shape, pitch, *line, across)
     step = min(pitch)
-    reach = math.hypot(rows * pitch[0], cols * pitch[1]) / 2
-    along = np.arange(-reach, reach + step / 2, step)
-    direction = np.array([math.cos(angle), math.sin(angle)])
-    normal = np.array([-math.sin(angle), math.cos(angle)])
-    points = offset * normal + along[:, None, None] * direction + across[None, :, None] * normal
-    col = points[..., 0] / pitch[1] + (cols - 1) / 2
-    row = points[..., 1] / pitch[0] + (rows - 1) / 2
     values = ndimage.map_coordinates(
         image, [row.ravel(), col.ravel()], order=1, mode="constant", cval=0.0
     ).reshape(row.shape)
