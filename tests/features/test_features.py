@@ -325,6 +325,22 @@ def test_packed_spectrum_equals_the_full_one(shape):
     assert ripple_spectrum(np.ones(shape, np.float32), pitch) is None
 
 
+@pytest.mark.parametrize("shape", [(128, 128), (16, 16), (15, 16), (2, 6), (1, 8), (3, 4)])
+def test_paired_powers_are_the_sums_of_the_two_parts(shape):
+    # with an even number of columns, each bin's power is gathered once from the pairs
+    # added in place: the same float32 sum of the same two squares as two gathers give
+    from taxel.features._spectrum import _layout, _pair_powers
+
+    rows, cols = shape
+    layout = _layout(shape, (1e-3, 1e-3))
+    squares = np.random.default_rng(rows * cols).random(rows * cols).astype(np.float32)
+    squares[0] = 0.0
+    expected = squares[layout.first] + squares[layout.second]
+    paired = _pair_powers(squares, shape, layout.lone)[layout.paired]
+    np.testing.assert_array_equal(paired, expected)
+    assert _layout((16, 15), (1e-3, 1e-3)).paired is None  # odd columns: two gathers
+
+
 def test_spectrum_of_a_ripple_whose_float32_squares_overflow():
     # 1e15 units of ripple over 128 x 128 taxels: the frequency-weighted sum of the float32
     # power is beyond float32's range; the measures come from float64 and do not change

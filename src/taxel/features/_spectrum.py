@@ -4,7 +4,9 @@ The image is real, so its spectrum is conjugate-symmetric: OpenCV's real DFT giv
 pair of conjugate bins once, packed as "CCS" (the real and imaginary parts of a bin in
 neighbouring entries), in two thirds of the time of the full complex spectrum. The band
 sums, the power-weighted mean frequency and the strongest bin are read from that packed
-half directly, with indices worked out once per image shape.
+half directly, with indices worked out once per image shape. With an even number of
+columns, each bin's two squared parts are first added where they lie (`_pair_powers`), so
+that one gather reads the bins' powers, at two thirds of the cost of one gather per part.
 """
 
 from __future__ import annotations
@@ -36,6 +38,8 @@ class _Layout(NamedTuple):
     window: np.ndarray  # Hann window, float32, the image's shape
     first: np.ndarray  # per bin: flat index of its real part in the packed spectrum
     second: np.ndarray  # per bin: of its imaginary part (0, the mean, zeroed, if it has none)
+    paired: np.ndarray | None  # per bin: its power's index in `_pair_powers` (None: odd cols)
+    lone: np.ndarray  # flat indices of the entries that are real bins alone (`_pair_powers`)
     halved: np.ndarray  # positions of the bins that are their own conjugate (but the mean)
     frequency: np.ndarray  # per bin [cycles/m], float32
     shared_frequency: np.ndarray  # `frequency`, halved at `halved`, float32
@@ -59,6 +63,59 @@ def _packed_bins(rows: int, cols: int) -> tuple[np.ndarray, np.ndarray, np.ndarr
     kx = np.where(real_column, np.where(c == 0, 0, cols // 2), (c + 1) // 2)
     part = np.where(real_column, np.where(alone, 0, (r + 1) % 2), (c + 1) % 2)
     return ky.ravel(), kx.ravel(), part.ravel()
+
+
+def _lone_entries(rows: int, cols: int) -> np.ndarray:
+    """Flat indices of the packed entries that hold a real bin alone (even `cols`).
+
+    Re0 and Re(N/2) of the first row, and of the last row when `rows` is even.
+    """
+    entries = [0, cols - 1]
+    if rows % 2 == 0:
+        entries += [(rows - 1) * cols, rows * cols - 1]
+    return np.array(entries, np.intp)
+
+
+def _pair_positions(rows: int, cols: int, first: np.ndarray) -> np.ndarray | None:
+    """Per bin (given its real part's flat index), where `_pair_powers` puts its power.
+
+    None with an odd number of columns (see `_pair_powers`).
+    """
+    if cols % 2:
+        return None
+    half = rows * cols // 2 - 1
+    end = rows - 1 if rows % 2 == 0 else rows  # rows 1 .. end - 1 of a real column pair up
+    row, col = np.divmod(first, cols)
+    position = np.empty(first.size, np.intp)
+    inner = (col % 2 == 1) & (col < cols - 1)
+    position[inner] = (first[inner] - 1) // 2
+    side = ((col == 0) | (col == cols - 1)) & (row % 2 == 1) & (row < end)
+    position[side] = half + row[side] - 1 + (col[side] == cols - 1)
+    for index, entry in enumerate(_lone_entries(rows, cols).tolist()):
+        position[first == entry] = half + (end - 1) // 2 * 2 + index
+    return position
+
+
+def _pair_powers(squares: np.ndarray, shape: tuple[int, int], lone: np.ndarray) -> np.ndarray:
+    """The bins' powers (their squared parts added), at the places `_pair_positions` gives.
+
+    `squares`: the packed spectrum's entries squared, flat, of an image with an even number
+    of columns. Each row of the packed spectrum holds (Re, Im) pairs in columns (1, 2),
+    (3, 4), ...; the rows keep that parity in the flat array, so every such pair is one
+    entry of ``squares[1::2] + squares[2::2]`` (the sums across one row's last column and
+    the next row's first are never read). The two real columns hold pairs down rows
+    (1, 2), (3, 4), ...: their sums follow, in rows of two, then the lone real entries.
+    """
+    rows, cols = shape
+    half = rows * cols // 2 - 1
+    end = rows - 1 if rows % 2 == 0 else rows
+    pairs = (end - 1) // 2
+    out = np.empty(half + 2 * pairs + lone.size, squares.dtype)
+    np.add(squares[1:-1:2], squares[2::2], out=out[:half])
+    sides = squares.reshape(rows, cols)[:, :: cols - 1]  # the real columns 0 and cols - 1
+    np.add(sides[1:end:2], sides[2:end:2], out=out[half : half + 2 * pairs].reshape(pairs, 2))
+    squares.take(lone, out=out[half + 2 * pairs :])
+    return out
 
 
 @lru_cache(maxsize=32)
@@ -92,18 +149,24 @@ def _layout(shape: tuple[int, int], pitch: tuple[float, float]) -> _Layout:
     window = np.outer(np.hanning(rows), np.hanning(cols)).astype(np.float32)
     share = np.where((second == 0) & (bins[order] != 0), 0.5, 1.0)
     frequency = frequency[order].astype(np.float32)
+    first = first[order]
     layout = _Layout(
         window,
-        first[order],
+        first,
         second,
+        _pair_positions(rows, cols, first),
+        _lone_entries(rows, cols),
         np.flatnonzero(share != 1.0),
         frequency,
         (frequency * share).astype(np.float32),  # (exact: halving a float32)
         starts,
         empty if empty.any() else None,
     )
+    # the cached values are read-only, but for the index arrays: `take` and `reduceat` copy
+    # an index array that is not writeable before using it, which costs as much as the
+    # gather itself
     for array in layout:
-        if isinstance(array, np.ndarray):
+        if isinstance(array, np.ndarray) and array.dtype.kind == "f":
             array.flags.writeable = False
     return layout
 
@@ -148,8 +211,11 @@ def _band_powers(squares: np.ndarray, layout: _Layout) -> tuple[np.ndarray, floa
     sums are float64. Sums that overflow are inf (no warning).
     """
     squares[0] = 0.0  # the mean; also the missing imaginary part of the real bins
-    power = squares.take(layout.first)
-    cv2.add(power, squares.take(layout.second), dst=power)
+    if layout.paired is None:
+        power = squares.take(layout.first)
+        cv2.add(power, squares.take(layout.second), dst=power)
+    else:  # (the same sums, each of the same two squares)
+        power = _pair_powers(squares, layout.window.shape, layout.lone).take(layout.paired)
     strongest = float(layout.frequency[cv2.minMaxLoc(power.reshape(1, -1))[3][0]])
     # the self-conjugate bins' halves, exact (in float64, and for the frequency-weighted
     # total, on the frequencies: the products are the same)
