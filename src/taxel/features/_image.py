@@ -322,9 +322,6 @@ def prepare(
     """
     given = _as_image(image)
     check_image_shape(given.shape, sensor_or_pitch)
-    dtype = np.asarray(image).dtype  # (a raw frame: small integers, as it was given)
-    integers = dtype.kind in "biu"
-    whole = integers and dtype.itemsize * 8 <= _EXACT_BITS
     if reference is not None:
         tare = _as_image(reference, "reference")
         if tare.shape != given.shape:
@@ -332,12 +329,12 @@ def prepare(
                 f"`reference` must have the image's shape {given.shape}, got {tare.shape}"
             )
         given = cv2.subtract(given, tare)
-        stored = np.asarray(reference).dtype  # (integers of 16 bits differ in 17: exact)
-        integers = integers and stored.kind in "biu"
-        whole = whole and integers and stored.itemsize * 8 <= _EXACT_BITS
+    # integer inputs (a raw frame, as it was given) leave an exact quarter-step residual;
+    # two of 16 bits differ in 17, which float32 still holds exactly
+    dtypes = [np.asarray(array).dtype for array in (image, reference) if array is not None]
     values = hexagonal_resampled(given, sensor_or_pitch)
-    integers = integers and values is given
-    whole = whole and values is given
+    integers = values is given and all(dtype.kind in "biu" for dtype in dtypes)
+    whole = integers and max(dtype.itemsize for dtype in dtypes) * 8 <= _EXACT_BITS
     pitch = pitch_pair(sensor_or_pitch)
     smoothing = check_range("smoothing", smoothing, 0.0, 20.0)
     calibrated = check_flag("calibrated", calibrated)
