@@ -769,3 +769,15 @@ def test_size_and_lobes_are_none_when_not_measured():
     # no contact: neither
     blank = extract(np.zeros((16, 16)), 1e-3)
     assert blank.shape.size_m is None and blank.shape.lobes is None
+
+
+@pytest.mark.parametrize("shape", [(3, 3), (5, 9), (16, 16), (17, 23), (128, 128)])
+@pytest.mark.parametrize("sigma", [0.5, 1.0, 2.0, 3.3])
+def test_gaussian_blur_is_opencvs(shape, sigma):
+    # the features' blur applies GaussianBlur's own kernel with a cached copy of it
+    from taxel.features._image import gaussian_blur
+
+    image = np.random.default_rng(shape[0]).random(shape).astype(np.float32) * 255
+    reach = 2 * math.ceil(3 * sigma) + 1
+    expected = cv2.GaussianBlur(image, (reach, reach), sigma, borderType=cv2.BORDER_REFLECT)
+    np.testing.assert_array_equal(gaussian_blur(image, sigma), expected)

@@ -11,7 +11,7 @@ import cv2
 import numpy as np
 
 from taxel._validation import check_range
-from taxel.features._image import Prepared, prepare
+from taxel.features._image import Prepared, gaussian_blur, prepare
 from taxel.features._noise import noise_from_residual
 from taxel.features._spectrum import OCTAVES, ripple_spectrum
 from taxel.features._window import WHOLE_IMAGE, contact_area, contact_box, contact_window
@@ -204,7 +204,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     r0, r1 = max(top - grow, 0), min(top + height + grow, rows)
     c0, c1 = max(left - grow, 0), min(left + width + grow, cols)
     image, mask = prepared.image[r0:r1, c0:c1], prepared.mask[r0:r1, c0:c1]
-    smooth = cv2.GaussianBlur(image, (reach, reach), sigma, borderType=cv2.BORDER_REFLECT)
+    smooth = gaussian_blur(image, sigma)
     lowest = cv2.erode(smooth, _square(2 * math.ceil(radius) + 1))
     # the largest of the 8 neighbours: a maximum is >= it, and equal to it beside another
     around = cv2.dilate(smooth, _AROUND)
