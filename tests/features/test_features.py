@@ -781,3 +781,25 @@ def test_gaussian_blur_is_opencvs(shape, sigma):
     reach = 2 * math.ceil(3 * sigma) + 1
     expected = cv2.GaussianBlur(image, (reach, reach), sigma, borderType=cv2.BORDER_REFLECT)
     np.testing.assert_array_equal(gaussian_blur(image, sigma), expected)
+
+
+def test_records_behave_as_frozen_dataclasses():
+    import dataclasses
+
+    from taxel.features._fitting import LineFit
+    from taxel.features._record import record
+
+    fit = LineFit(0.5, 1.0, 0.1, 7)
+    assert fit == LineFit(angle_rad=0.5, offset_m=1.0, rms_m=0.1, n_points=7)
+    assert hash(fit) == hash(LineFit(0.5, 1.0, 0.1, 7))
+    assert repr(fit) == "LineFit(angle_rad=0.5, offset_m=1.0, rms_m=0.1, n_points=7)"
+    assert dataclasses.asdict(fit)["n_points"] == 7
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        fit.rms_m = 0.0  # type: ignore[misc]
+    with pytest.raises(TypeError):
+        LineFit(0.5, 1.0, 0.1)  # type: ignore[call-arg]
+    with pytest.raises(TypeError, match="plain fields"):
+
+        @record
+        class WithDefault:
+            value: float = 0.0

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any
 
 import cv2
@@ -11,12 +10,13 @@ import numpy as np
 
 from taxel.features._image import Prepared, prepare
 from taxel.features._moments import binary_moments
+from taxel.features._record import record
 from taxel.features._window import contact_box, contact_window
 
 __all__ = ["Contact", "ContactRegion", "contact_regions", "find_contact", "region_moments"]
 
 
-@dataclass(frozen=True)
+@record
 class ContactRegion:
     """One connected contact region.
 
@@ -56,7 +56,7 @@ class ContactRegion:
     touches_border: bool
 
 
-@dataclass(frozen=True)
+@record
 class Contact:
     """Contact over the whole image: the union of its regions, and each region.
 

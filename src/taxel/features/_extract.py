@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict
 from typing import Any
 
 import numpy as np
@@ -15,6 +15,7 @@ from taxel.features._fitting import CircleFit, LineFit, fit_line_and_circle
 from taxel.features._gaps import HoleReport, SlotReport, gaps_core
 from taxel.features._holes import diameter_test, outline_contours, outline_taxels
 from taxel.features._image import prepare
+from taxel.features._record import record
 from taxel.features._shape import ContactShape, is_textured, shape_core
 from taxel.features._surface import ContactPlane, plane_core
 from taxel.features._texture import Texture, texture_core
@@ -27,7 +28,7 @@ __all__ = ["ContactPose", "TactileFeatures", "extract"]
 _CONVEX_FILL = 0.9
 
 
-@dataclass(frozen=True)
+@record
 class ContactPose:
     """Where the contact is and how it lies, in the sensor frame and the robot's base frame.
 
@@ -51,7 +52,7 @@ class ContactPose:
     normal_base: tuple[float, float, float] | None
 
 
-@dataclass(frozen=True)
+@record
 class TactileFeatures:
     """The passive features of one tactile image (Ellis seed, section 2.1).
 

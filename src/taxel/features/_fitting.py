@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from taxel._validation import as_finite_array
+from taxel.features._record import record
 
 __all__ = [
     "CircleFit",
@@ -57,7 +57,7 @@ def std(a: np.ndarray) -> float:
     return math.sqrt(float(np.add.reduce(deviation)) / a.size)
 
 
-@dataclass(frozen=True)
+@record
 class LineFit:
     """A straight line ``-sin(a) x + cos(a) y = offset`` fitted to points.
 
@@ -78,7 +78,7 @@ class LineFit:
     n_points: int
 
 
-@dataclass(frozen=True)
+@record
 class CircleFit:
     """A circle fitted to points by minimising the geometric distance.
 

@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import cast
 
 import cv2
@@ -31,6 +30,7 @@ import numpy as np
 from taxel.features._basins import MIN_GAP_AREA, SLOT_BORDER_WIDTHS, SLOT_ELONGATION, basins
 from taxel.features._image import K_HIGH, Prepared
 from taxel.features._moments import binary_moments
+from taxel.features._record import record
 
 __all__ = ["Hole", "HoleReport", "Slot", "SlotReport", "gaps_core"]
 
@@ -84,7 +84,7 @@ _SAME_GAP = 0.5
 _REACH = 6
 
 
-@dataclass(frozen=True)
+@record
 class Hole:
     """A hole in the contact.
 
@@ -103,7 +103,7 @@ class Hole:
     radius_m: float
 
 
-@dataclass(frozen=True)
+@record
 class Slot:
     """A slot: a long gap with parallel walls.
 
@@ -127,7 +127,7 @@ class Slot:
     truncated: bool
 
 
-@dataclass(frozen=True)
+@record
 class HoleReport:
     """Holes found by the gap test, and the seed's diameter test.
 
@@ -148,7 +148,7 @@ class HoleReport:
     diameter_test: bool
 
 
-@dataclass(frozen=True)
+@record
 class SlotReport:
     """Slots found in the contact.
 

@@ -50,7 +50,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import cv2
@@ -80,6 +79,7 @@ from taxel.features._outline import (
     tolerance,
     two_arms,
 )
+from taxel.features._record import record
 from taxel.features._texture import high_points
 
 __all__ = ["CONTACT_TYPES", "ContactShape", "classify_contact", "is_textured", "shape_core"]
@@ -137,7 +137,7 @@ _STRAIGHT_TAXELS = 8.0
 _CORNER_ANGLE = math.radians(150.0)
 
 
-@dataclass(frozen=True)
+@record
 class ContactShape:
     """Contact type and the measures it was decided from.
 

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import cv2
@@ -12,6 +11,7 @@ import numpy as np
 
 from taxel._validation import as_finite_array
 from taxel.features._image import Prepared, prepare
+from taxel.features._record import record
 from taxel.features._window import contact_area, contact_hull, contact_window
 
 __all__ = ["ContactPlane", "contact_plane", "plane_core"]
@@ -19,7 +19,7 @@ __all__ = ["ContactPlane", "contact_plane", "plane_core"]
 _ERODE = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (5, 5))
 
 
-@dataclass(frozen=True)
+@record
 class ContactPlane:
     """How planar the contact is, and the normal of its plane when depth is known.
 

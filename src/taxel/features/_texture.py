@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
 
@@ -13,6 +12,7 @@ import numpy as np
 from taxel._validation import check_range
 from taxel.features._image import Prepared, gaussian_blur, prepare
 from taxel.features._noise import noise_from_residual
+from taxel.features._record import record
 from taxel.features._spectrum import OCTAVES, ripple_spectrum
 from taxel.features._window import WHOLE_IMAGE, contact_area, contact_box, contact_window
 
@@ -37,7 +37,7 @@ _SQUARES: dict[int, np.ndarray] = {}
 _AROUND = np.array([[1, 1, 1], [1, 0, 1], [1, 1, 1]], np.uint8)  # the 8 neighbours
 
 
-@dataclass(frozen=True)
+@record
 class Texture:
     """Texture measures of a tactile image.
 
