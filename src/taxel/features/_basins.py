@@ -17,6 +17,7 @@ so its outline is the same there (and the outlines come in the same raster order
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import cv2
 import numpy as np
@@ -98,6 +99,13 @@ def _window(prepared: Prepared, limit: float) -> tuple[slice, slice] | None:
     )
 
 
+def _out_of(rect: Sequence[int], box: Sequence[int]) -> bool:
+    """Whether the bounding box `rect` reaches out of `box` (both x, y, width, height)."""
+    left, top, width, height = rect
+    x0, y0, box_width, box_height = box
+    return left < x0 or top < y0 or left + width > x0 + box_width or top + height > y0 + box_height
+
+
 def basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
     """Outer outlines of the non-contact regions that may hold a gap, with their level.
 
@@ -118,7 +126,7 @@ def basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
         if prepared.baseline + f * prepared.contrast > prepared.low
     ] + [prepared.low]
     window = _window(prepared, limit)
-    x0, y0, width, height = contact_box(prepared)
+    box = contact_box(prepared)
     # a large array is traced in the window alone (a small one, or a window that is the
     # whole array, saves nothing)
     crop = None
@@ -149,18 +157,22 @@ def basins(prepared: Prepared) -> list[tuple[np.ndarray, float]]:
             points = contour.shape[0]
             if parent >= 0 or points < 3:
                 continue
-            # the outline runs through the outer taxels' centres: add half a taxel all round
+            # the outline runs through the outer taxels' centres: half a taxel is added all
+            # round its area, so an outline of 2 `smallest` points or more is never too
+            # small, and its box is tested first: that drops the usual long outline out of
+            # the box (the region around the contact) without its area. A short outline,
+            # mostly a speck, is dropped by its area first.
+            rect = None
+            if boxed and 0.5 * points >= smallest:
+                rect = cv2.boundingRect(contour)
+                if _out_of(rect, box):
+                    continue
             # (`contourArea` is the moments' m00, without building them all)
             area = cv2.contourArea(contour) + 0.5 * points
             if area < smallest or area > limit:
                 continue
-            left, top, box_width, box_height = cv2.boundingRect(contour)
-            if boxed and (
-                left < x0
-                or top < y0
-                or left + box_width > x0 + width
-                or top + box_height > y0 + height
-            ):
+            left, top, box_width, box_height = rect or cv2.boundingRect(contour)
+            if boxed and rect is None and _out_of((left, top, box_width, box_height), box):
                 continue  # out of the contact's box: never a basin (see the module notes)
             if left == 0 or top == 0 or left + box_width == cols or top + box_height == rows:
                 moments = cv2.moments(contour)
