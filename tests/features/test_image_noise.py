@@ -1,11 +1,22 @@
 """The noise the contact thresholds count in, and the unloaded reference frame (tare)."""
 
 import math
+from dataclasses import astuple
 
 import numpy as np
 import pytest
 
-from taxel.features import extract, prepare
+from taxel.features import (
+    classify_contact,
+    contact_plane,
+    detect_edges,
+    detect_holes,
+    detect_slots,
+    extract,
+    find_contact,
+    prepare,
+    texture_measures,
+)
 from taxel.features._noise import noise_from_residual
 from taxel.mechanics import make_indenter
 from taxel.sensor import make_sensor
@@ -86,3 +97,28 @@ def test_a_reference_of_another_shape_or_with_nan_is_refused(vhdta):
     bad[3, 4] = np.nan
     with pytest.raises(ValueError, match="`reference` must be finite everywhere, got 1 NaN"):
         extract(frame, vhdta, reference=bad)
+
+
+def test_each_feature_takes_the_reference_and_agrees_with_extract(vhdta, unloaded):
+    reference, blank = unloaded
+    frame = next(f for f in blank if extract(f, vhdta).contact.present)
+    assert find_contact(frame, vhdta).present  # the glass's pattern, as read
+    assert not find_contact(frame, vhdta, reference=reference).present
+    assert classify_contact(frame, vhdta, reference=reference).contact_type == "none"
+    assert detect_edges(frame, vhdta, reference=reference).n_edges == 0
+    pressed = vhdta.press(
+        make_indenter("washer"), normal_force=10.0, position=(1e-3, -1e-3), rng=3
+    ).raw
+    whole = extract(pressed, vhdta, reference=reference)
+    assert whole.holes.count == 1
+    assert find_contact(pressed, vhdta, reference=reference) == whole.contact
+    shape = classify_contact(pressed, vhdta, reference=reference)
+    # the same type and fits (extract shares the band's sums between the fits: rounding)
+    assert (shape.contact_type, shape.n_edges) == (whole.contact_type, whole.shape.n_edges)
+    for found, expected in ((shape.line, whole.shape.line), (shape.circle, whole.shape.circle)):
+        flat, flat_expected = (np.hstack(astuple(fit)).astype(float) for fit in (found, expected))
+        np.testing.assert_allclose(flat, flat_expected, rtol=1e-9)
+    assert detect_holes(pressed, vhdta, reference=reference) == whole.holes
+    assert detect_slots(pressed, vhdta, reference=reference) == whole.slots
+    assert contact_plane(pressed, vhdta, reference=reference) == whole.plane
+    assert texture_measures(pressed, vhdta, reference=reference) == whole.texture

@@ -17,7 +17,9 @@ One feature each
 find_contact (Contact, ContactRegion), detect_edges (Edges),
 classify_contact (ContactShape, CONTACT_TYPES), detect_holes (HoleReport, Hole),
 detect_slots (SlotReport, Slot), contact_plane (ContactPlane),
-texture_measures (Texture), fit_line (LineFit), fit_circle (CircleFit)
+texture_measures (Texture), fit_line (LineFit), fit_circle (CircleFit). Those that take
+an image also take the keywords of `prepare` (`Preparation`: calibrated, smoothing,
+baseline, defects, noise, reference) and give what `extract` gives with them.
 
 Helpers
 -------
@@ -42,7 +44,7 @@ from taxel.features._extract import ContactPose, TactileFeatures, extract
 from taxel.features._fitting import CircleFit, LineFit, fit_circle, fit_line
 from taxel.features._gaps import Hole, HoleReport, Slot, SlotReport
 from taxel.features._holes import detect_holes, detect_slots
-from taxel.features._image import Prepared, prepare
+from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._sensor import pitch_pair, sensor_coordinates, sensor_noise
 from taxel.features._shape import CONTACT_TYPES, ContactShape, classify_contact
 from taxel.features._surface import ContactPlane, contact_plane
@@ -60,6 +62,7 @@ __all__ = [
     "Hole",
     "HoleReport",
     "LineFit",
+    "Preparation",
     "Prepared",
     "Slot",
     "SlotReport",

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, Unpack
 
 import cv2
 import numpy as np
 
-from taxel.features._image import Prepared, prepare
+from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._moments import binary_moments
 from taxel.features._record import record
 from taxel.features._window import contact_box, contact_window
@@ -276,11 +276,7 @@ def contact_regions(prepared: Prepared) -> Contact:
 def find_contact(
     image: Any,
     sensor_or_pitch: Any,
-    *,
-    calibrated: bool = False,
-    smoothing: float = 1.0,
-    baseline: float | None = None,
-    noise: float | None = None,
+    **preparation: Unpack[Preparation],
 ) -> Contact:
     """Find the contact regions of a tactile image and measure each.
 
@@ -290,16 +286,10 @@ def find_contact(
         Raw frame, calibrated reading or pressure map [Pa]; larger means more pressure.
     sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
         Taxel pitch [m].
-    calibrated : bool, default False
-        The image holds pressure [Pa]; the total force is then reported [N].
-    smoothing : float, default 1.0
-        Gaussian smoothing sigma [taxels].
-    baseline : float, optional
-        No-contact level [image units]; estimated when omitted (see `prepare`).
-    noise : float, optional
-        Noise standard deviation of one taxel [image units], when the sensor's is known;
-        estimated from the image when omitted (see `prepare`), which needs an array large
-        enough that the contact leaves most of it flat.
+    **preparation
+        `calibrated` (the image holds pressure [Pa]: the total force is then reported
+        [N]), `smoothing`, `baseline`, `defects`, `noise` and `reference`, passed on to
+        `prepare` with its defaults (so that this agrees with `extract`).
 
     Returns
     -------
@@ -321,12 +311,4 @@ def find_contact(
     >>> [round(v * 1e3, 3) for v in contact.centroid_m]  # x, y [mm]
     [3.0, -2.0]
     """
-    prepared = prepare(
-        image,
-        sensor_or_pitch,
-        calibrated=calibrated,
-        smoothing=smoothing,
-        baseline=baseline,
-        noise=noise,
-    )
-    return contact_regions(prepared)
+    return contact_regions(prepare(image, sensor_or_pitch, **preparation))

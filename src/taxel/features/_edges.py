@@ -8,12 +8,12 @@ set has a 1 ms budget.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Unpack
 
 import cv2
 import numpy as np
 
-from taxel.features._image import Prepared, prepare
+from taxel.features._image import Preparation, Prepared, prepare
 
 __all__ = ["Edges", "detect_edges", "edges_core"]
 
@@ -93,7 +93,7 @@ def edges_core(prepared: Prepared) -> Edges:
     return Edges(edge_mask, int(keep.sum()), rows, cols, points)
 
 
-def detect_edges(image: Any, sensor_or_pitch: Any, *, smoothing: float = 1.0) -> Edges:
+def detect_edges(image: Any, sensor_or_pitch: Any, **preparation: Unpack[Preparation]) -> Edges:
     """Canny edges of a tactile image and the number of edge segments.
 
     Parameters
@@ -102,8 +102,10 @@ def detect_edges(image: Any, sensor_or_pitch: Any, *, smoothing: float = 1.0) ->
         Raw frame, calibrated reading or pressure map.
     sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
         Taxel pitch [m].
-    smoothing : float, default 1.0
-        Gaussian sigma [taxels] applied before the gradient (Canny's own smoothing).
+    **preparation
+        `calibrated`, `smoothing` (the Gaussian sigma [taxels] applied before the
+        gradient: Canny's own smoothing), `baseline`, `defects`, `noise` and `reference`,
+        passed on to `prepare` with its defaults (so that this agrees with `extract`).
 
     Returns
     -------
@@ -123,4 +125,4 @@ def detect_edges(image: Any, sensor_or_pitch: Any, *, smoothing: float = 1.0) ->
     >>> edges.n_edges  # one closed outline
     1
     """
-    return edges_core(prepare(image, sensor_or_pitch, smoothing=smoothing))
+    return edges_core(prepare(image, sensor_or_pitch, **preparation))

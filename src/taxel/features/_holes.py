@@ -7,14 +7,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, Unpack
 
 import cv2
 import numpy as np
 
 from taxel.features._fitting import CircleFit, taubin_circle
 from taxel.features._gaps import HoleReport, SlotReport, gaps_core
-from taxel.features._image import Prepared, prepare
+from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._window import contact_hull
 
 __all__ = [
@@ -139,7 +139,7 @@ def outline_taxels(
 
 
 def detect_holes(
-    image: Any, sensor_or_pitch: Any, *, smoothing: float = 1.0, defects: bool | None = None
+    image: Any, sensor_or_pitch: Any, **preparation: Unpack[Preparation]
 ) -> HoleReport:
     """Holes in the contact, by the gap test and by the seed's diameter test.
 
@@ -149,10 +149,9 @@ def detect_holes(
         Raw frame, calibrated reading or pressure map.
     sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
         Taxel pitch [m], or a sensor description.
-    smoothing : float, default 1.0
-        Gaussian sigma [taxels].
-    defects : bool, optional
-        Remove defects narrower than 3 taxels first (see `prepare`).
+    **preparation
+        `calibrated`, `smoothing`, `baseline`, `defects`, `noise` and `reference`, passed
+        on to `prepare` with its defaults (so that this agrees with `extract`).
 
     Returns
     -------
@@ -179,7 +178,7 @@ def detect_holes(
     >>> report.count, report.diameter_test, round(report.items[0].radius_m * 1e3, 1)
     (1, True, 5.0)
     """
-    prepared = prepare(image, sensor_or_pitch, smoothing=smoothing, defects=defects)
+    prepared = prepare(image, sensor_or_pitch, **preparation)
     holes, _, _ = gaps_core(prepared)
     contours = outline_contours(prepared)
     test = diameter_test(prepared, *outline_taxels(prepared, contours), contours=contours)
@@ -187,7 +186,7 @@ def detect_holes(
 
 
 def detect_slots(
-    image: Any, sensor_or_pitch: Any, *, smoothing: float = 1.0, defects: bool | None = None
+    image: Any, sensor_or_pitch: Any, **preparation: Unpack[Preparation]
 ) -> SlotReport:
     """Slots in the contact: long gaps with parallel walls.
 
@@ -197,10 +196,9 @@ def detect_slots(
         Raw frame, calibrated reading or pressure map.
     sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
         Taxel pitch [m], or a sensor description.
-    smoothing : float, default 1.0
-        Gaussian sigma [taxels].
-    defects : bool, optional
-        Remove defects narrower than 3 taxels first (see `prepare`).
+    **preparation
+        `calibrated`, `smoothing`, `baseline`, `defects`, `noise` and `reference`, passed
+        on to `prepare` with its defaults (so that this agrees with `extract`).
 
     Returns
     -------
@@ -221,6 +219,6 @@ def detect_slots(
     >>> round(slot.width_m * 1e3), round(slot.length_m * 1e3), round(float(slot.angle_rad), 3)
     (8, 48, 0.0)
     """
-    prepared = prepare(image, sensor_or_pitch, smoothing=smoothing, defects=defects)
+    prepared = prepare(image, sensor_or_pitch, **preparation)
     _, slots, _ = gaps_core(prepared)
     return SlotReport(bool(slots), len(slots), tuple(slots))

@@ -28,7 +28,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import Any, cast
+from typing import Any, TypedDict, cast
 
 import cv2
 import numpy as np
@@ -48,7 +48,7 @@ from taxel.features._sensor import (
     pitch_pair,
 )
 
-__all__ = ["Prepared", "prepare"]
+__all__ = ["Preparation", "Prepared", "prepare"]
 
 # Contact thresholds, in units of the smoothed image's noise sigma (k) or of the contrast (f).
 # The baseline is the minimum of the smoothed image, which lies about 3-4 sigma below the
@@ -76,6 +76,17 @@ _EXACT_BITS = 16
 # The features compute in float32 (which ends at 3.4e38): values up to 1e15 keep their
 # squares and sums finite, and no tactile image comes near it (1e15 Pa is a petapascal).
 _LARGEST_VALUE = 1e15
+
+
+class Preparation(TypedDict, total=False):
+    """The keywords of `prepare`, which every one-feature function passes on to it."""
+
+    calibrated: bool
+    smoothing: float
+    baseline: float | None
+    defects: bool | None
+    noise: float | str | None
+    reference: Any
 
 
 @dataclass(eq=False)

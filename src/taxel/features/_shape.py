@@ -50,7 +50,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Any, Unpack
 
 import cv2
 import numpy as np
@@ -59,7 +59,7 @@ from taxel._validation import check_positive
 from taxel.features._contact import Contact, contact_regions
 from taxel.features._fitting import CircleFit, LineFit, centred, fit_line_and_circle
 from taxel.features._gaps import gaps_core
-from taxel.features._image import Prepared, prepare
+from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._measures import (
     band_fits,
     half_region,
@@ -337,9 +337,8 @@ def classify_contact(
     image: Any,
     sensor_or_pitch: Any,
     *,
-    smoothing: float = 1.0,
     point_size: float = _POINT_SIZE,
-    defects: bool | None = None,
+    **preparation: Unpack[Preparation],
 ) -> ContactShape:
     """Contact type of a tactile image, with edge and corner measures.
 
@@ -349,13 +348,12 @@ def classify_contact(
         Raw frame, calibrated reading or pressure map.
     sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
         Taxel pitch [m], or a sensor description.
-    smoothing : float, default 1.0
-        Gaussian sigma [taxels].
     point_size : float, default 2.5e-3
         A compact contact whose size (major axis at half its peak) is at most this [m]
         (or 2 taxel pitches), allowing for the cover's blur, is a point.
-    defects : bool, optional
-        Remove defects narrower than 3 taxels first (see `prepare`).
+    **preparation
+        `calibrated`, `smoothing`, `baseline`, `defects`, `noise` and `reference`, passed
+        on to `prepare` with its defaults (so that this agrees with `extract`).
 
     Returns
     -------
@@ -382,7 +380,7 @@ def classify_contact(
     'none'
     """
     point_size = check_positive("point_size", point_size)
-    prepared = prepare(image, sensor_or_pitch, smoothing=smoothing, defects=defects)
+    prepared = prepare(image, sensor_or_pitch, **preparation)
     contact = contact_regions(prepared)
     count = high_points(prepared)[0]
     holes, slots, explained = gaps_core(prepared, textured=is_textured(contact, count))

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, Unpack
 
 import cv2
 import numpy as np
 
 from taxel._validation import as_finite_array
-from taxel.features._image import Prepared, prepare
+from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._record import record
 from taxel.features._window import contact_area, contact_hull, contact_window
 
@@ -105,7 +105,11 @@ def plane_core(
 
 
 def contact_plane(
-    image: Any, sensor_or_pitch: Any, *, depth: Any = None, smoothing: float = 1.0
+    image: Any,
+    sensor_or_pitch: Any,
+    *,
+    depth: Any = None,
+    **preparation: Unpack[Preparation],
 ) -> ContactPlane:
     """Planarity of the contact area and, given depth, the normal of the contact plane.
 
@@ -118,8 +122,9 @@ def contact_plane(
     depth : array_like, shape (rows, cols), optional
         Indentation of the cover's surface at each taxel [m], positive into the cover
         (the mechanics convention), from a sensor that measures displacement or depth.
-    smoothing : float, default 1.0
-        Gaussian sigma [taxels].
+    **preparation
+        `calibrated`, `smoothing`, `baseline`, `defects`, `noise` and `reference`, passed
+        on to `prepare` with its defaults (so that this agrees with `extract`).
 
     Returns
     -------
@@ -142,7 +147,7 @@ def contact_plane(
     >>> round(plane.planarity, 2), [round(v, 3) for v in plane.normal]
     (0.93, [0.1, 0.0, 0.995])
     """
-    prepared = prepare(image, sensor_or_pitch, smoothing=smoothing)
+    prepared = prepare(image, sensor_or_pitch, **preparation)
     array = None
     if depth is not None:
         array = as_finite_array("depth", depth, ndim=2)

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
-from typing import Any
+from typing import Any, Unpack
 
 import cv2
 import numpy as np
 
 from taxel._validation import check_range
-from taxel.features._image import Prepared, gaussian_blur, prepare
+from taxel.features._image import Preparation, Prepared, gaussian_blur, prepare
 from taxel.features._noise import noise_from_residual
 from taxel.features._record import record
 from taxel.features._spectrum import OCTAVES, ripple_spectrum
@@ -299,7 +299,11 @@ def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Textur
 
 
 def texture_measures(
-    image: Any, sensor_or_pitch: Any, *, sigma: float = _TEXTURE_SIGMA
+    image: Any,
+    sensor_or_pitch: Any,
+    *,
+    sigma: float = _TEXTURE_SIGMA,
+    **preparation: Unpack[Preparation],
 ) -> Texture:
     """Texture of a tactile image: the seed's two measures and a spectral one.
 
@@ -311,6 +315,9 @@ def texture_measures(
         Taxel pitch [m], or a sensor description.
     sigma : float, default 2.0
         Gaussian smoothing before the maxima are counted [taxels].
+    **preparation
+        `calibrated`, `smoothing`, `baseline`, `defects`, `noise` and `reference`, passed
+        on to `prepare` with its defaults (so that this agrees with `extract`).
 
     Returns
     -------
@@ -336,4 +343,4 @@ def texture_measures(
     5.66
     """
     sigma = check_range("sigma", sigma, 0.0, 20.0, low_inclusive=False)
-    return texture_core(prepare(image, sensor_or_pitch), sigma=sigma)
+    return texture_core(prepare(image, sensor_or_pitch, **preparation), sigma=sigma)
