@@ -142,11 +142,24 @@ def test_features_layout_and_nan_above_nyquist():
         ({"trim_fraction": 0.5}, ValueError, r"`trim_fraction` must lie in \[0, 0.45\]"),
         ({"band_edges": [5.0, 3.0]}, ValueError, "`band_edges` must be at least two increasing"),
         ({"segment_length": -1}, ValueError, "`segment_length` must be > 0, got -1"),
-        # 160 steps kept, at 35 Hz and 50 mm/s: 0.2286 m of travel
+        # 200 steps at 35 Hz and 50 mm/s: 0.2857 m of travel, 0.2286 m in the 160 steps
+        # kept: a longer segment is the segment's error, one in between the trim's
+        (
+            {"segment_length": 0.3},
+            ValueError,
+            r"`segment_length` must be at most the record's travel \(0.2857 m: 200 steps",
+        ),
         (
             {"segment_length": 0.25},
             ValueError,
-            r"`segment_length` must be at most the record's travel \(0.2286 m: 160 steps",
+            r"`trim_fraction` 0.1 leaves 0.2286 m of the record's 0.2857 m travel \(160 of "
+            r"200 steps at 0.05 m/s and 35 Hz\), less than `segment_length` 0.25$",
+        ),
+        (
+            {"readings": np.ones(40), "time": np.arange(40.0) / RATE, "trim_fraction": 0.45},
+            ValueError,
+            "`trim_fraction` 0.45 leaves 4 of the record's 40 steps, fewer than the 16 a "
+            "spectrum needs",
         ),
         # a segment beyond float's range of samples, and one of fewer than 8 samples
         # (at 35 Hz and 50 mm/s a sample is 1.43 mm of travel)
@@ -161,7 +174,11 @@ def test_features_layout_and_nan_above_nyquist():
             r"`segment_length` must span at least 8 samples \(0.01143 m at 0.05 m/s and 35 Hz\)",
         ),
         ({"readings": np.full(200, np.nan)}, ValueError, "`readings` must be finite"),
-        ({"readings": np.ones(12), "time": np.arange(12.0)}, ValueError, "at least 16 steps"),
+        (
+            {"readings": np.ones(12), "time": np.arange(12.0)},
+            ValueError,
+            "`readings` must have at least 16 steps, got 12",
+        ),
     ],
 )
 def test_signature_errors(kwargs, error, message):
@@ -173,6 +190,13 @@ def test_signature_errors(kwargs, error, message):
     velocity = arguments.pop("sliding_velocity")
     with pytest.raises(error, match=message):
         texture_signature(readings, time, velocity, **arguments)
+
+
+def test_a_segment_the_trim_left_too_short_fits_the_untrimmed_record():
+    time = np.arange(200.0) / RATE  # 0.2857 m at 50 mm/s
+    signature = texture_signature(np.ones(200), time, 0.05, segment_length=0.25, trim_fraction=0.0)
+    # a 0.25 m segment: spectral resolution 4 cycles/m
+    assert signature.spatial_frequency[1] == pytest.approx(4.0, rel=0.01)
 
 
 def test_features_need_a_positive_contact_level_and_some_texture():

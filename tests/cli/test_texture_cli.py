@@ -204,7 +204,7 @@ def test_a_version_1_model_gets_the_features_of_version_1(folders, tmp_path, cap
     static = texture_features(
         texture_signature(recording.readings, recording.time, recording.sliding_velocity)
     )
-    np.testing.assert_array_equal(_features(Path(files[0]), data["settings"], "--model"), static)
+    np.testing.assert_array_equal(_features(Path(files[0]), data["settings"], {}), static)
 
 
 def test_segment_lengths_out_of_range_are_refused(folders, tmp_path, capsys):
@@ -269,3 +269,46 @@ def test_too_many_neighbors_names_the_flag_and_the_recordings(folders, tmp_path,
     assert not model_path.exists()
     assert main([*args, "--neighbors", "6"]) == 0  # as many as there are: taken
     assert "fitted 6 recordings" in capsys.readouterr().out
+
+
+def test_a_trim_that_leaves_too_little_travel_names_the_trim(folders, tmp_path, capsys):
+    """The trim's error names --trim-fraction, not --segment-length (it named the latter)."""
+    train, test = folders
+    model_path = tmp_path / "model.json"
+    args = ["texture", "fit", str(train), "--out", str(model_path)]
+    # 20 mm/s at 35 Hz for 0.3 m: 525 steps; a trim of 0.45 at each end keeps 53, 0.0303 m
+    assert main([*args, "--trim-fraction", "0.45"]) == 2
+    error = _one_line_error(capsys)
+    assert error.startswith(f"taxel texture fit: error: {train / 'Coarse_F150_V-20mmps_0.csv'}: ")
+    assert error.endswith(
+        ": --trim-fraction 0.45 leaves 0.03029 m of the record's 0.3001 m travel (53 of 525 "
+        "steps at 0.02 m/s and 34.9933 Hz), less than --segment-length 0.2\n"
+    )
+    assert not model_path.exists()
+    # the 105 steps at 100 mm/s keep 11, too few for any segment
+    assert main([*args, "--trim-fraction", "0.45", "--segment-length", "0.02"]) == 2
+    assert _one_line_error(capsys).endswith(
+        "_V100mmps_0.csv: --trim-fraction 0.45 leaves 11 of the record's 105 steps, fewer "
+        "than the 16 a spectrum needs\n"
+    )
+    # a trim of 0.4 leaves 0.06 m of each record, which holds a 0.05 m segment
+    assert main([*args, "--trim-fraction", "0.4", "--segment-length", "0.05"]) == 0
+    capsys.readouterr()
+
+    # a model's settings are named as the model's, in classify
+    recording = str(test / "Coarse_F150_V-50mmps_1.csv")
+    data = json.loads(model_path.read_text())
+    data["settings"]["segment_length"] = 0.2
+    model_path.write_text(json.dumps(data))
+    assert main(["texture", "classify", recording, "--model", str(model_path)]) == 2
+    assert _one_line_error(capsys).endswith(
+        ": the model's trim_fraction 0.4 leaves 0.05998 m of the record's 0.2999 m travel (42 "
+        "of 210 steps at 0.05 m/s and 35.0128 Hz), less than the model's segment_length 0.2\n"
+    )
+    data["settings"]["segment_length"] = "0.2"  # a string: a TypeError, named the same way
+    model_path.write_text(json.dumps(data))
+    assert main(["texture", "classify", recording, "--model", str(model_path)]) == 2
+    assert _one_line_error(capsys) == (
+        f"taxel texture classify: error: {recording}: the model's segment_length must be a "
+        "real number, got '0.2'\n"
+    )

@@ -17,12 +17,19 @@ taxels (`load_shares`), which also cancels a force that fluctuates while sliding
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_choice, check_range
+from taxel._validation import (
+    as_finite_array,
+    check_choice,
+    check_finite,
+    check_positive,
+    check_range,
+)
 from taxel.active._load_normalization import load_shares, remove_load_coherent
 from taxel.active._spatial_spectrum import (
     MIN_STEPS,
@@ -250,18 +257,24 @@ def texture_signature(
         )
     edges = as_finite_array("band_edges", band_edges, ndim=1)
     check_band_edges(edges)
-    drop = int(round(trim_fraction * time.shape[0]))
-    keep = slice(drop, time.shape[0] - drop)
+    n_recorded = time.shape[0]
+    if n_recorded < MIN_STEPS:
+        raise ValueError(f"`readings` must have at least {MIN_STEPS} steps, got {n_recorded}")
+    drop = int(round(trim_fraction * n_recorded))
+    keep = slice(drop, n_recorded - drop)
     time, readings = time[keep], readings[keep]
     if time.shape[0] < MIN_STEPS:
         raise ValueError(
-            f"`readings` must keep at least {MIN_STEPS} steps after trimming, got "
-            f"{time.shape[0]}"
+            f"`trim_fraction` {trim_fraction:g} leaves {time.shape[0]} of the record's "
+            f"{n_recorded} steps, fewer than the {MIN_STEPS} a spectrum needs"
         )
     duration = time[-1] - time[0]
     if duration <= 0:
         raise ValueError("`time` must advance over the recording")
     sampling_rate = (time.shape[0] - 1) / duration
+    _check_trimmed_travel(
+        n_recorded, time.shape[0], sampling_rate, sliding_velocity, segment_length, trim_fraction
+    )
     analysed = load_shares(readings) if normalization == "load" else readings
     if decorrelate_load:
         analysed = remove_load_coherent(analysed, readings.mean(axis=1))
@@ -279,6 +292,41 @@ def texture_signature(
         normalization=normalization,
         load_decorrelated=bool(decorrelate_load),
     )
+
+
+def _check_trimmed_travel(
+    n_recorded: int,
+    n_kept: int,
+    sampling_rate: float,
+    sliding_velocity: Any,
+    segment_length: Any,
+    trim_fraction: float,
+) -> None:
+    """Refuse a segment longer than the travel, naming the trim when it is the cause.
+
+    `spatial_power_spectrum` sees only the trimmed record, so its own error would blame
+    `segment_length` and show the trimmed travel as the record's. Here a segment longer
+    than the whole record is `segment_length`'s error; one that the record holds but the
+    trimmed record does not is the trim's, and the error names both values.
+    """
+    segment_length = check_positive("segment_length", segment_length)
+    speed = abs(check_finite("sliding_velocity", sliding_velocity))
+    if speed == 0:  # the spectrum's own error
+        return
+    samples = segment_length * float(sampling_rate) / speed  # as the spectrum counts them
+    if not math.isfinite(samples) or round(samples) > n_recorded:
+        raise ValueError(
+            f"`segment_length` must be at most the record's travel "
+            f"({n_recorded * speed / sampling_rate:.4g} m: {n_recorded} steps at {speed:g} m/s "
+            f"and {sampling_rate:g} Hz), got {segment_length:g}"
+        )
+    if round(samples) > n_kept:
+        raise ValueError(
+            f"`trim_fraction` {trim_fraction:g} leaves {n_kept * speed / sampling_rate:.4g} m "
+            f"of the record's {n_recorded * speed / sampling_rate:.4g} m travel ({n_kept} of "
+            f"{n_recorded} steps at {speed:g} m/s and {sampling_rate:g} Hz), less than "
+            f"`segment_length` {segment_length:g}"
+        )
 
 
 def texture_features(signature: TextureSignature, *, per_taxel: bool = True) -> np.ndarray:

@@ -35,10 +35,20 @@ _SIGNATURE_SETTINGS = (
 )
 
 
-def _features(path: Path, settings: Mapping[str, Any], segment: str) -> np.ndarray:
+# the library's names of the settings, as `fit`'s flags and as the settings of a model
+_FLAGS = {
+    "segment_length": "--segment-length",
+    "trim_fraction": "--trim-fraction",
+    "normalization": "--normalization",
+}
+_MODEL_SETTINGS = {name: f"the model's {name}" for name in _SIGNATURE_SETTINGS}
+
+
+def _features(path: Path, settings: Mapping[str, Any], names: Mapping[str, str]) -> np.ndarray:
     """Texture features of one recording; an error names the recording.
 
-    `segment`: what set the segment length, named in its errors (a flag, or the model).
+    `names`: what each setting is called in errors, by its library name (the flags of
+    `fit`, or the model's settings); each is replaced wherever the error names it.
     """
     from taxel.active import texture_features, texture_signature
     from taxel.io import read_fabricslide
@@ -50,8 +60,11 @@ def _features(path: Path, settings: Mapping[str, Any], segment: str) -> np.ndarr
             recording.readings, recording.time, recording.sliding_velocity, **options
         )
         return texture_features(signature, per_taxel=bool(settings.get("per_taxel", True)))
-    except ValueError as error:
-        raise ValueError(f"{path}: {str(error).replace('`segment_length`', segment)}") from None
+    except (ValueError, TypeError) as error:  # a model's setting may be of the wrong type
+        message = str(error)
+        for name, shown in names.items():
+            message = message.replace(f"`{name}`", shown)
+        raise type(error)(f"{path}: {message}") from None
 
 
 def _fit(arguments: argparse.Namespace) -> int:
@@ -87,7 +100,7 @@ def _fit(arguments: argparse.Namespace) -> int:
         "decorrelate_load": not arguments.keep_load_coherent,
         "per_taxel": not arguments.pooled_only,
     }
-    features = np.array([_features(path, settings, "--segment-length") for path in files])
+    features = np.array([_features(path, settings, _FLAGS) for path in files])
     labels = [str(parse_fabricslide_name(path)["fabric"]) for path in files]
     model = fit_texture_classifier(
         features, labels, n_neighbors=arguments.neighbors, settings=settings
@@ -111,7 +124,7 @@ def _classify(arguments: argparse.Namespace) -> int:
     ]
     with reading("--model", arguments.model):
         model = TextureClassifier.load(arguments.model)
-    features = np.array([_features(path, model.settings, "the model's segment") for path in files])
+    features = np.array([_features(path, model.settings, _MODEL_SETTINGS) for path in files])
     predictions = model.predict(features)
     if arguments.json:
         rows = [
