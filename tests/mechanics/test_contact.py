@@ -82,6 +82,26 @@ def test_warm_start_from_a_smaller_contact_grows_the_window(sphere_heights):
     assert abs(np.sqrt(big.contact_area / np.pi) - hertz.contact_radius) < SPACING
 
 
+@pytest.mark.parametrize("load", [{"normal_force": 0.0}, {"indentation": 0.0}])
+def test_no_load_is_no_contact(sphere_heights, load):
+    """At zero force (or approach) the sphere rests at first touch: nothing is pressed."""
+    result = solve_contact(sphere_heights, SPACING, COVER, **load)
+    assert result.pressure.shape == result.displacement.shape == SHAPE
+    assert not result.pressure.any() and not result.displacement.any()
+    assert not result.contact.any() and result.contact_area == 0.0
+    assert (result.normal_force, result.indentation) == (0.0, 0.0)
+    assert result.converged and (result.n_iterations, result.residual) == (0, 0.0)
+    assert result.message == "no load: the indenter rests at first touch, with no contact"
+
+
+def test_a_warm_start_from_rest_is_a_cold_start(sphere_heights, sphere_result):
+    # the rest's zero force used to scale the first guess: 1 N / 0 N
+    rest = solve_contact(sphere_heights, SPACING, COVER, normal_force=0.0)
+    warm = solve_contact(sphere_heights, SPACING, COVER, normal_force=1.0, initial=rest)
+    np.testing.assert_array_equal(warm.pressure, sphere_result.pressure)
+    assert warm.n_iterations == sphere_result.n_iterations
+
+
 def test_translation_moves_the_solution(sphere_result):
     shifted = Sphere(RADIUS).on_grid(SHAPE, SPACING, position=(5 * SPACING, -3 * SPACING))
     result = solve_contact(shifted, SPACING, COVER, normal_force=1.0)
@@ -191,8 +211,8 @@ def test_non_convergence_is_reported(sphere_heights):
 @pytest.mark.parametrize(
     ("kwargs", "error", "match"),
     [
-        ({"normal_force": -1.0}, ValueError, r"`normal_force` must be > 0, got -1"),
-        ({"normal_force": 0.0}, ValueError, r"`normal_force` must be > 0"),
+        ({"normal_force": -1.0}, ValueError, r"`normal_force` must be >= 0, got -1"),
+        ({"indentation": -1e-4}, ValueError, r"`indentation` must be >= 0, got -0.0001"),
         ({}, ValueError, "exactly one of `normal_force` and `indentation`"),
         ({"normal_force": 1.0, "indentation": 1e-4}, ValueError, "exactly one"),
         ({"normal_force": 1.0, "thickness": -1.0}, ValueError, "`thickness` must be > 0"),

@@ -181,9 +181,28 @@ def test_a_batch_of_frames_reads_as_each_frame():
     np.testing.assert_allclose(sensor.mean_reading(quantities), expected)
 
 
+@pytest.mark.parametrize("name", PRESET_NAMES)
+def test_a_press_at_zero_force_reads_the_sensor_at_rest(presets, name):
+    sensor = presets[name]
+    rest = sensor.press(make_indenter("sphere"), normal_force=0.0, rng=5)
+    assert rest.contact is not None and not rest.contact.contact.any()
+    assert rest.contact.normal_force == 0.0 and rest.contact.converged
+    # the raw frame of no pressure, through the same readout as a loaded press
+    unloaded = sensor.frame_from_pressure(np.zeros(sensor.load_grid.shape), rng=5)
+    np.testing.assert_array_equal(rest.raw, unloaded.raw)
+    assert rest.raw.dtype == sensor.press(make_indenter("sphere"), normal_force=1.0).raw.dtype
+    np.testing.assert_array_equal(rest.quantity, sensor.sensed_quantity(*_at_rest(sensor)))
+
+
+def _at_rest(sensor):
+    pressure = np.zeros(sensor.load_grid.shape)
+    return pressure, sensor.fields(pressure)
+
+
 @pytest.mark.parametrize(
     ("changes", "error", "match"),
     [
+        ({"normal_force": -0.5}, ValueError, "`normal_force` must be >= 0, got -0.5"),
         ({"indenter": "sphere"}, TypeError, "`indenter` must be an Indenter, got 'sphere'"),
         ({"indenter": None}, TypeError, "`indenter` must be an Indenter, got None"),
         ({"position": (0,)}, ValueError, r"`position` must be an \(x, y\) pair, got \(0,\)"),

@@ -234,6 +234,22 @@ def _check_heights(heights: Any) -> np.ndarray:
     return array
 
 
+def _unloaded(shape: tuple[int, ...], spacing: tuple[float, float]) -> ContactResult:
+    """The contact at zero force or approach: the indenter rests at first touch."""
+    return ContactResult(
+        pressure=np.zeros(shape),
+        displacement=np.zeros(shape),
+        contact=np.zeros(shape, dtype=bool),
+        indentation=0.0,
+        normal_force=0.0,
+        spacing=spacing,
+        converged=True,
+        n_iterations=0,
+        residual=0.0,
+        message="no load: the indenter rests at first touch, with no contact",
+    )
+
+
 def solve_contact(
     heights: Any,
     spacing: Any,
@@ -260,9 +276,10 @@ def solve_contact(
     material : ElasticMaterial
         The cover.
     normal_force : float, optional
-        Total force F [N], > 0 (force control). Give this or `indentation`.
+        Total force F [N], >= 0 (force control). Give this or `indentation`.
     indentation : float, optional
-        Rigid approach delta [m], > 0 (position control).
+        Rigid approach delta [m], >= 0 (position control). A zero force or approach leaves
+        the indenter resting at first touch: no pressure, no contact, the cover undeformed.
     indenter_material : ElasticMaterial, optional
         An elastic indenter (treated as a half-space); None for rigid.
     thickness : float, optional
@@ -304,9 +321,9 @@ def solve_contact(
     if (normal_force is None) == (indentation is None):
         raise ValueError("give exactly one of `normal_force` and `indentation`")
     if normal_force is not None:
-        normal_force = check_positive("normal_force", normal_force)
+        normal_force = check_positive("normal_force", normal_force, allow_zero=True)
     if indentation is not None:
-        indentation = check_positive("indentation", indentation)
+        indentation = check_positive("indentation", indentation, allow_zero=True)
     if thickness is not None:
         thickness = check_positive("thickness", thickness)
     tolerance = check_positive("tolerance", tolerance)
@@ -318,6 +335,11 @@ def solve_contact(
     if initial is not None:
         check_instance("initial", initial, ContactResult)
         check_shape("initial.pressure", initial.pressure, heights.shape)
+
+    if not (normal_force or indentation):  # nothing to solve (and F = 0 would divide by 0)
+        return _unloaded(heights.shape, spacing)
+    if initial is not None and not initial.normal_force > 0:
+        initial = None  # a contact at rest says nothing of the next one (its F would divide)
 
     shape = heights.shape
     cell_area = spacing[0] * spacing[1]

@@ -186,7 +186,8 @@ class TactileSensor:
         indenter : Indenter
             What presses (see `taxel.mechanics.make_indenter`).
         normal_force, indentation : float
-            Force [N] or approach [m]: give one.
+            Force [N] or approach [m], >= 0: give one. Zero reads the sensor at rest (no
+            contact; with `rng`, its noise and fixed pattern alone).
         position, angle
             Placement of the indenter in the sensor frame [m], [rad].
         indenter_material : ElasticMaterial, optional
