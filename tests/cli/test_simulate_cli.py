@@ -88,7 +88,9 @@ def test_bad_arguments_exit_2_with_one_line(tmp_path, capsys, extra, match):
 @pytest.mark.parametrize(
     ("extra", "match"),
     [
-        (["--force", "0"], "argument --force: must be > 0, got 0"),
+        (["--force", "-1"], "argument --force: must be >= 0, got -1"),
+        (["--force=-0.001"], "argument --force: must be >= 0, got -0.001"),
+        (["--force", "nan"], "argument --force: must be >= 0, got nan"),
         (["--force", "1", "--seed", "-3"], "argument --seed: must be >= 0"),
         (["--force", "1", "--out", "frame.csv"], "--out must name a .npy file"),
         (["--force", "1", "--oversampling", "0"], "argument --oversampling: must lie in 1..16"),
@@ -155,3 +157,51 @@ def test_simulate_warns_when_the_sensing_plane_is_pressed_beyond_full_scale(tmp_
     assert "full scale of 413.7 kPa" in err
     assert main([*argv, str(tmp_path / "light.npy"), "--force", "3"]) == 0
     assert capsys.readouterr().err == ""
+
+
+def test_a_frame_at_zero_force_is_the_sensor_at_rest(tmp_path, capsys):
+    """--force 0 writes the unloaded frame, which `taxel features --reference` takes."""
+    sensor = make_sensor("vhdta128")
+    rest, truth = tmp_path / "rest.npy", tmp_path / "rest.npz"
+    argv = ["simulate", "--sensor", "vhdta128", "--object", "sphere", "--force", "0"]
+    assert main([*argv, "--seed", "1", "--out", str(rest), "--truth", str(truth)]) == 0
+    assert capsys.readouterr().out == (
+        f"wrote {rest}: vhdta128 raw frame 128 x 128 (uint8, noise seed 1), sphere 0 N at "
+        f"(0, 0) mm; nothing pressed, the sensor at rest; truth in {truth}\n"
+    )
+    # the raw frame of no pressure, its noise and fixed pattern, as a loaded press reads it
+    unloaded = sensor.frame_from_pressure(np.zeros(sensor.load_grid.shape), rng=1).raw
+    np.testing.assert_array_equal(np.load(rest), unloaded)
+    assert np.load(rest).dtype == np.uint8
+    data = np.load(truth)
+    meta = json.loads(str(data["meta"]))
+    assert meta["normal_force"] == 0.0 and meta["contact_area"] == 0.0
+    assert meta["converged"] and (meta["n_iterations"], meta["residual"]) == (0, 0.0)
+    assert meta["message"] == "no load: the indenter rests at first touch, with no contact"
+    assert not data["pressure"].any() and not data["contact"].any()
+    assert not data["taxel_stress"].any()
+    # "-0" is 0 N, not "-0 N"
+    assert main([*argv[:-1], "-0", "--out", str(tmp_path / "zero.npy")]) == 0
+    assert "sphere 0 N at (0, 0) mm; nothing pressed" in capsys.readouterr().out
+
+    # another frame at rest (other noise): read alone, vhdta128's scratches look like a
+    # contact; tared by the simulated rest frame, it is none
+    other = tmp_path / "other.npy"
+    assert main([*argv, "--seed", "2", "--out", str(other)]) == 0
+    capsys.readouterr()
+    features = ["features", str(other), "--sensor", "vhdta128", "--json"]
+    assert main(features) == 0
+    assert json.loads(capsys.readouterr().out)["contact"]["present"]
+    assert main([*features, "--reference", str(rest)]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert not data["contact"]["present"] and data["contact_type"] == "none"
+    # a 2 N press tared the same way is still a contact, at the origin
+    loaded = tmp_path / "loaded.npy"
+    argv[-1] = "2"
+    assert main([*argv, "--seed", "3", "--out", str(loaded)]) == 0
+    capsys.readouterr()
+    features[1] = str(loaded)
+    assert main([*features, "--reference", str(rest)]) == 0
+    contact = json.loads(capsys.readouterr().out)["contact"]
+    assert contact["present"]  # centred where the sphere pressed, to a tenth of a millimetre
+    assert np.all(np.abs(contact["centroid_m"]) < 1e-4)

@@ -16,6 +16,7 @@ __all__ = [
     "choice",
     "finite",
     "integer_in",
+    "nonnegative_in",
     "positive",
     "positive_in",
     "preset",
@@ -112,6 +113,20 @@ def positive_in(low: float, high: float) -> Callable[[str], float]:
         if value > high:
             raise argparse.ArgumentTypeError(f"must be at most {high:g}, got {text}")
         return value
+
+    return parse
+
+
+def nonnegative_in(high: float) -> Callable[[str], float]:
+    """A finite number >= 0 and at most `high` (beyond it the models overflow)."""
+
+    def parse(text: str) -> float:
+        value = _number(text)
+        if not (math.isfinite(value) and value >= 0):
+            raise argparse.ArgumentTypeError(f"must be >= 0, got {text}")
+        if value > high:
+            raise argparse.ArgumentTypeError(f"must be at most {high:g}, got {text}")
+        return value + 0.0  # -0 as 0, which is how it is printed and stored
 
     return parse
 

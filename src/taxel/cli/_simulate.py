@@ -4,6 +4,8 @@
 contact, runs the transducer and readout, and saves the raw frame; ``--truth TRUTH.npz``
 also saves what produced it (pressure on the load grid, contact, taxel fields). Positions
 are given in metres in the sensor frame; files are never replaced unless ``--overwrite``.
+``--force 0`` writes the frame at rest (nothing pressed), the unloaded reference that
+``taxel features --reference`` subtracts.
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ from taxel.cli._arguments import (
     choice,
     finite,
     integer_in,
-    positive_in,
+    nonnegative_in,
     preset,
     seed,
 )
@@ -195,17 +197,24 @@ def _run(arguments: argparse.Namespace) -> int:
         "n_iterations": contact.n_iterations,
         "residual": contact.residual,
         "contact_area": contact.contact_area,
+        "message": contact.message,
         "raw_file": str(out),
     }
     _write_both(out, raw, truth, None if truth is None else _truth(frame, sensor, meta))
     _warn_if_saturated(frame, sensor)
     noise = "noise-free" if arguments.seed is None else f"noise seed {arguments.seed}"
+    if arguments.force == 0:  # no contact was solved: nothing to report of it
+        solved = "nothing pressed, the sensor at rest"
+    else:
+        solved = (
+            f"contact {contact.contact_area * 1e6:.3g} mm^2, "
+            f"{'converged' if contact.converged else 'NOT converged'} in "
+            f"{contact.n_iterations} iterations"
+        )
     sys.stdout.write(
         f"wrote {out}: {sensor.name} raw frame {' x '.join(map(str, raw.shape))} "
         f"({raw.dtype}, {noise}), {arguments.object} {arguments.force:g} N at "
-        f"({x * 1e3:g}, {y * 1e3:g}) mm; contact {contact.contact_area * 1e6:.3g} mm^2, "
-        f"{'converged' if contact.converged else 'NOT converged'} in "
-        f"{contact.n_iterations} iterations"
+        f"({x * 1e3:g}, {y * 1e3:g}) mm; {solved}"
         + (f"; truth in {truth}" if truth is not None else "")
         + "\n"
     )
@@ -238,9 +247,10 @@ def register(commands: Any) -> None:
     parser.add_argument(
         "--force",
         required=True,
-        type=positive_in(0.0, 1e6),
+        type=nonnegative_in(1e6),
         metavar="NEWTONS",
-        help="normal force [N], at most 1e6",
+        help="normal force [N], at most 1e6; 0 writes the sensor's frame at rest (with "
+        "--seed, its noise and fixed pattern), a --reference for `taxel features`",
     )
     parser.add_argument(
         "--x",
