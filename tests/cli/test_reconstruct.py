@@ -551,3 +551,27 @@ def test_readings_beyond_the_calibrations_full_scale_are_warned_of(tmp_path, cap
             assert err == ""
         else:
             assert warned in err and "beyond the calibration's full scale" in err
+
+
+def test_a_rule_held_at_its_bound_is_printed(frame_file, tmp_path, capsys):
+    """--noise-level above the readings (8e5 Pa x sqrt(m) against |b| = 1.04e5 Pa) is said."""
+    arguments = ["reconstruct", str(frame_file), "--sensor", "resistive16", "--noise-level"]
+    arguments += ["5e4", "--out", str(tmp_path / "p.npy"), "--overwrite"]
+    assert main(arguments) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first == (
+        "tikhonov (order 0), lambda = 10 (discrepancy, at its bound: the largest of its "
+        "range, 10, as no residual reaches tau sigma sqrt(m) (the noise level is as large as "
+        "the readings))"
+    )
+    assert main([*arguments, "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["at_bound"] is True and summary["regularization"] == pytest.approx(10.0)
+    assert "lambda held at the largest of its range, 10" in summary["message"]
+    # within the readings' size: not at the bound, and the text as before
+    arguments[5] = "1000"
+    assert main(arguments) == 0
+    assert "(discrepancy)\n" in capsys.readouterr().out
+    assert main([*arguments, "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["at_bound"] is False and summary["message"] == "direct solve"

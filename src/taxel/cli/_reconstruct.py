@@ -108,6 +108,8 @@ def _run(arguments: argparse.Namespace) -> int:
         "order": result.order,
         "rule": result.rule,
         "regularization": _finite_or_none(first),
+        "at_bound": np.asarray(result.at_bound, dtype=bool).tolist(),
+        "message": result.message,
         "support_regularization": None if second is None else _finite_or_none(second),
         "support_rule": second_rule,
         "residual_norm": _finite_or_none(result.residual_norm),
@@ -124,7 +126,8 @@ def _run(arguments: argparse.Namespace) -> int:
     else:
         text = (
             f"{result.method} (order {result.order}), lambda = "
-            f"{_format(first)} ({result.rule}){_support_text(second, second_rule)}\n"
+            f"{_format(first)} ({result.rule}{_bound_text(result)})"
+            f"{_support_text(second, second_rule)}\n"
             f"residual norm {_format(result.residual_norm)}, "
             f"solution norm {_format(result.solution_norm)}, "
             f"force {_format(result.normal_force)} N{_centre_text(centre)}\n"
@@ -165,6 +168,14 @@ def _support_stage(result) -> tuple[float | None, str | None]:
     if not result.support.any():
         return 0.0, "none"
     return float(result.regularization), "gcv"
+
+
+def _bound_text(result) -> str:
+    """', at its bound: WHY' when the rule took the end of its range of lambda, else ''."""
+    if not np.any(result.at_bound):
+        return ""
+    _, _, why = result.message.partition("lambda held at the ")
+    return f", at its bound: the {why}" if why else ", at its bound"
 
 
 def _support_text(second: float | None, rule: str | None) -> str:

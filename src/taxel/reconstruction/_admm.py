@@ -321,7 +321,7 @@ class ADMMSolver:
                     guess = 0.05 * float(np.abs(linear.pressure).max()) + 1e-300
                 parameter, state = self._solve_tv(frame, target, guess, callback)
             seminorm = total_variation(state.z[-1])
-        pressure = state.z[-1]
+        pressure, tv = state.z[-1], self.method == "tv"
         converged = state.primal < self.tolerance and state.dual < self.tolerance
         message = (
             f"converged in {state.iteration} iterations"
@@ -342,5 +342,7 @@ class ADMMSolver:
             converged=converged,
             n_iterations=state.iteration,
             residual=max(state.primal, state.dual),
-            message=message,
+            # nonneg: what the linear solve said of its lambda (a bound), after its own
+            message=message + ("" if tv else linear.message.removeprefix("direct solve")),
+            at_bound=False if tv else linear.at_bound,
         )

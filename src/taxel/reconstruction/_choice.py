@@ -219,7 +219,8 @@ class ParameterScan:
     truncated : bool
         True for truncated SVD (f in {0, 1}), False for Tikhonov.
     points : int
-        Grid size.
+        Grid size from the smallest lambda to 10; above 10 sqrt(max g) > 10 (penalties of
+        order >= 1) the grid goes on at the same step to that lambda.
     """
 
     def __init__(
@@ -237,6 +238,15 @@ class ParameterScan:
         smallest = np.sqrt(max(float(positive.min()), 1e-20)) if positive.size else 1e-6
         low = min(smallest / 10, 1e-4)  # well-posed problems may want lambda << sqrt(g_min)
         self.log_grid = np.linspace(np.log10(low), 1.0, points)
+        # and at the other end, lambda >> sqrt(g_max): every mode filtered away, the residual
+        # within 2 % of its limit (an order >= 1 penalty passes smooth modes with g up to
+        # 1e8; a grid ending at 10 left the discrepancy principle no root for a noise level
+        # its limit admits); extended at the same step, so that the points below 10 stay
+        highest = np.sqrt(float(g.max())) * 10 if g.size else 10.0
+        step = self.log_grid[1] - self.log_grid[0]
+        extra = max(int(np.ceil((np.log10(max(highest, 10.0)) - 1.0) / step - 1e-9)), 0)
+        self.log_grid = np.r_[self.log_grid, 1.0 + step * np.arange(1, extra + 1)]
+        points = self.log_grid.size
         self.grid = 10**self.log_grid
         self._first_meaningful = min(int(np.searchsorted(self.grid, smallest / 10)), points - 3)
         if g.size <= _EXACT_LIMIT:
@@ -303,34 +313,44 @@ class ParameterScan:
             curvature = lcurve_curvature(self.grid, residual, seminorm, derivative)
         return np.sqrt(seminorm / self.scale), curvature
 
-    def choose(self, rule: str, curve: ParameterCurve, noise: np.ndarray | None) -> np.ndarray:
-        """The lambda of each frame (B,) by the rule; `noise`: reading noise std per frame."""
+    def choose(
+        self, rule: str, curve: ParameterCurve, noise: np.ndarray | None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """(lambda, at_bound) of each frame (B,) by the rule; `noise`: noise std per frame.
+
+        `at_bound` is True where the rule found no lambda inside the grid and took one of
+        its ends: for the discrepancy principle, a residual that never reaches
+        tau sigma sqrt(m) (the largest lambda) or exceeds it everywhere (the smallest).
+        """
         if rule == "discrepancy":
             assert noise is not None
             # no noise at all (an all-zero frame): the smallest lambda on the grid
             target = np.log(np.maximum(np.asarray(noise) * np.sqrt(self.count), 1e-300))
             values = np.log(np.maximum(curve.residual_norm, 1e-300))
-            return 10 ** _crossings(self.log_grid, values, target)
+            logs, at_bound = _crossings(self.log_grid, values, target)
+            return 10**logs, at_bound
         if rule == "gcv":
             # an all-zero frame has no residual at any lambda: then the smallest on the grid
             values = np.log(np.maximum(curve.gcv, 1e-300))
-            logs = _parabola_vertices(self.log_grid, values, np.argmin(values, axis=1))
+            index = np.argmin(values, axis=1)
         elif rule == "lcurve":
             values = curve.curvature.copy()
             values[:, [0, -1]] = -np.inf  # a corner is interior
             # well below the smallest mode's transition the curve collapses to a point: its
             # curvature there is rounding noise, not a corner
             values[:, : self._first_meaningful] = -np.inf
-            logs = _parabola_vertices(self.log_grid, values, np.argmax(values, axis=1))
+            index = np.argmax(values, axis=1)
         else:
             raise ValueError(f"unknown rule {rule!r}")
-        return 10**logs
+        logs = _parabola_vertices(self.log_grid, values, index)
+        return 10**logs, (index == 0) | (index == self.grid.size - 1)
 
 
-def _crossings(x: np.ndarray, y: np.ndarray, target: np.ndarray) -> np.ndarray:
+def _crossings(x: np.ndarray, y: np.ndarray, target: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """First x where each non-decreasing row of y (B, n) reaches its target (B,).
 
-    Linearly interpolated; x[0] if the row starts above it, x[-1] if it never gets there.
+    Linearly interpolated; x[0] if the row starts above it, x[-1] if it never gets there,
+    which the second array (B,) marks True.
     """
     above = y >= target[:, None]
     index = np.argmax(above, axis=1)
@@ -342,4 +362,5 @@ def _crossings(x: np.ndarray, y: np.ndarray, target: np.ndarray) -> np.ndarray:
         weight = np.where(y1 > y0, (target - y0) / (y1 - y0), 0.0)
     result = x[previous] + weight * (x[index] - x[previous])
     result = np.where(index == 0, x[0], result)
-    return np.where(never, x[-1], result)
+    starts_above = (index == 0) & ~never & (y[:, 0] > target)
+    return np.where(never, x[-1], result), never | starts_above

@@ -8,7 +8,46 @@ import numpy as np
 
 from taxel.reconstruction._choice import ParameterCurve
 
-__all__ = ["ReconstructionResult"]
+__all__ = ["ReconstructionResult", "bound_message"]
+
+# why each rule ends at the upper, lower end of its range of lambda
+_WHY = {
+    "discrepancy": (
+        "no residual reaches tau sigma sqrt(m) (the noise level is as large as the readings)",
+        "every residual exceeds tau sigma sqrt(m) (the noise level is below the misfit "
+        "that no lambda removes)",
+    ),
+    "gcv": ("the GCV function is least there",) * 2,
+    "lcurve": ("the L-curve has no corner inside",) * 2,
+}
+
+
+def bound_message(
+    rule: str,
+    regularization: np.ndarray,
+    at_bound: np.ndarray,
+    grid: np.ndarray,
+    *,
+    solve: str = "direct solve",
+) -> str:
+    """`solve`, and when the rule took an end of its range of lambda, which and why.
+
+    `regularization` and `at_bound` are per frame (B,), `grid` the range searched.
+    """
+    if not np.any(at_bound):
+        return solve
+    chosen = np.asarray(regularization)[np.asarray(at_bound)]
+    ends = [(end, why) for end, why in zip((grid[-1], grid[0]), _WHY[rule], strict=True)]
+    parts = []
+    for (end, why), name in zip(ends, ("largest", "smallest"), strict=True):
+        count = int(np.count_nonzero(np.isclose(chosen, end, rtol=1e-9)))
+        if count:
+            frames = "" if at_bound.size == 1 else f" in {count} of {at_bound.size} frames"
+            parts.append(f"lambda held at the {name} of its range, {end:.3g}{frames}, as {why}")
+    return (
+        f"{solve}; the {rule} rule found no lambda inside [{grid[0]:.3g}, {grid[-1]:.3g}]: "
+        + "; ".join(parts)
+    )
 
 
 @dataclass(frozen=True)
@@ -54,6 +93,14 @@ class ReconstructionResult:
     first_regularization : float or None
         Method "support": the lambda of its first stage (the Tikhonov estimate whose
         support is fitted), given or chosen by `rule`; None for the other methods.
+    at_bound : bool or numpy.ndarray of bool
+        Whether `rule` found no lambda inside its range and took the range's end (per frame
+        for a batch; the first stage's for method "support"); `message` says which. The
+        discrepancy principle does when no lambda's residual reaches tau sigma sqrt(m): a
+        noise level as large as the readings' own part that the penalty does not smooth
+        away; lambda is then the largest of the range, which leaves about 1 % of every mode
+        the penalty acts on. False for a given lambda and for method "tv" (whose search
+        for mu is not on a grid).
     """
 
     pressure: np.ndarray = field(repr=False)
@@ -72,6 +119,7 @@ class ReconstructionResult:
     message: str = "direct solve"
     support: np.ndarray | None = field(default=None, repr=False)
     first_regularization: float | None = None
+    at_bound: bool | np.ndarray = False
 
     @property
     def normal_force(self) -> float | np.ndarray:

@@ -195,7 +195,7 @@ class SupportSolver:
         cells = np.flatnonzero(support.ravel())
         lam1 = float(first.regularization)
         stage = f"support of {cells.size} cells from Tikhonov order {self.order} at lambda "
-        stage += f"{lam1:.3g} ({rule})"
+        stage += f"{lam1:.3g} ({rule}{', at its bound' if first.at_bound else ''})"
         if cells.size == 0:
             return self._result(
                 frame, first, np.zeros(self.spec.load_shape), 0.0, support, stage, 0
@@ -319,4 +319,5 @@ class SupportSolver:
             message=message,
             support=support,
             first_regularization=float(first.regularization),
+            at_bound=first.at_bound,
         )

@@ -17,7 +17,7 @@ from taxel.reconstruction._noise import (
     spectral_noise,
 )
 from taxel.reconstruction._operator import forward_operator
-from taxel.reconstruction._result import ReconstructionResult
+from taxel.reconstruction._result import ReconstructionResult, bound_message
 from taxel.reconstruction._spec import as_forward_model_spec
 from taxel.reconstruction._spectral import build_spectrum
 
@@ -181,7 +181,7 @@ class TikhonovSolver:
             parts = self._solve_spectral(frames, rule, value, noise_level, tau)
         else:
             parts = self._solve_masked(frames, rule, value, noise_level, tau)
-        pressure, lam, residual, seminorm, noise, curve = parts
+        pressure, lam, residual, seminorm, noise, curve, bound = parts
         return ReconstructionResult(
             pressure=pressure.reshape(*batch, *self.spec.load_shape),
             regularization=restore_batch(lam, batch),
@@ -193,6 +193,8 @@ class TikhonovSolver:
             noise_level=None if noise is None else restore_batch(noise, batch),
             curve=curve.frame(0) if curve is not None and batch == () else curve,
             spacing=self.spec.load_pitch,
+            message=bound_message(rule, lam, bound, self.scan.grid),
+            at_bound=bool(bound[0]) if batch == () else bound.reshape(batch),
         )
 
     def estimate_noise_level(self, frame: Any) -> float | np.ndarray:
@@ -275,10 +277,12 @@ class TikhonovSolver:
             )
             for start in range(0, frames.shape[0], size)
         ]
-        lam, residual, seminorm = (np.concatenate([p[i] for p in parts]) for i in (1, 2, 3))
+        lam, residual, seminorm, bound = (
+            np.concatenate([p[i] for p in parts]) for i in (1, 2, 3, 6)
+        )
         noise = None if parts[0][4] is None else np.concatenate([p[4] for p in parts])
         curve = None if parts[0][5] is None else join_curves([p[5] for p in parts])
-        return pressure, lam, residual, seminorm, noise, curve
+        return pressure, lam, residual, seminorm, noise, curve, bound
 
     def _solve_chunk(
         self,
@@ -293,6 +297,7 @@ class TikhonovSolver:
         spectrum = self.spectrum
         beta, free, rest = spectrum.analyze(frames)
         curve, noise = None, None
+        bound = np.zeros(frames.shape[0], dtype=bool)
         if rule == "given":
             lam = np.full(frames.shape[0], value)
         else:
@@ -303,14 +308,14 @@ class TikhonovSolver:
                 else:
                     noise = np.broadcast_to(np.asarray(noise_level, dtype=float), beta.shape[:1])
                     noise = noise.copy()
-            lam = self.scan.choose(rule, curve, None if noise is None else tau * noise)
+            lam, bound = self.scan.choose(rule, curve, None if noise is None else tau * noise)
         factors = self.filter_factors(lam)
         filtered = factors * beta
         pressure = spectrum.synthesize(filtered, free, out)
         misfit = beta - filtered
         residual = np.sqrt(np.einsum("ij,ij->i", misfit, misfit) + rest)
         seminorm = np.sqrt(np.einsum("ij,ij,j->i", filtered, filtered, self._inverse_g))
-        return pressure, lam, residual, seminorm, noise, curve
+        return pressure, lam, residual, seminorm, noise, curve, bound
 
     def _solve_masked(
         self,
@@ -342,12 +347,14 @@ class TikhonovSolver:
             pressure = self._pcg(frame, live, lam, parts[0][0])
             residual = np.linalg.norm((self.operator.apply(pressure) - frame)[live])
             seminorm = np.sqrt(np.vdot(pressure, self._penalty(pressure)))
-            outputs.append((pressure, lam, residual, seminorm, parts[4], parts[5]))
+            outputs.append((pressure, lam, residual, seminorm, parts[4], parts[5], parts[6][0]))
         pressure = np.stack([o[0] for o in outputs])
-        lams, residuals, seminorms = (np.array([o[i] for o in outputs]) for i in (1, 2, 3))
+        lams, residuals, seminorms, bound = (
+            np.array([o[i] for o in outputs]) for i in (1, 2, 3, 6)
+        )
         noise = None if outputs[0][4] is None else np.concatenate([o[4] for o in outputs])
         curve = outputs[-1][5] if len(outputs) == 1 else None
-        return pressure, lams, residuals, seminorms, noise, curve
+        return pressure, lams, residuals, seminorms, noise, curve, bound
 
     def _penalty(self, pressure: np.ndarray) -> np.ndarray:
         return self.spectrum.apply_penalty(pressure)
