@@ -471,7 +471,11 @@ def run(quick: bool = False) -> str:
         "estimated from the frame itself (`estimate_noise_level`: the smaller of a robust "
         "estimate on the modes the cover passes least and one on the finest diagonal "
         "differences of the readings). The other rules are given the true sigma where they "
-        "use it.",
+        "use it. Every rule searches, and the best is scanned on, the same range of lambda: "
+        "from a tenth of sqrt(g_min) (at most 1e-4) to 10 sqrt(g_max), g the filter's "
+        "spectrum (orders 1 and 2 pass smooth modes with g up to 1e8, so their range goes "
+        "on past 10); the L-curve's corner is sought below max(10, sqrt(g_max)), above "
+        "which every mode is more than half filtered and the curve has shrunk to its end.",
         "",
         *_table(rows),
         "",

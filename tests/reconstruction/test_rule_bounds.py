@@ -67,3 +67,13 @@ def test_a_smoothing_penalty_has_room_above_lambda_10(frame):
     assert flat.at_bound is True and flat.regularization == pytest.approx(2046, rel=0.01)
     assert flat.normal_force == pytest.approx(1.546, rel=1e-3)
     assert np.ptp(flat.pressure) < 0.02 * flat.pressure.mean()
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_the_lcurve_corner_is_not_the_collapsed_end_of_a_longer_range(frame, order):
+    # above sqrt(max g) every mode is more than half filtered and the L-curve shrinks to its
+    # end point; searched there, its curvature peaked at the top of the range (lambda 268
+    # and 7200 here), where the pressure is a flat 1.5 N spread over the whole array
+    result = reconstruct(frame, "resistive16", order=order, regularization="lcurve")
+    assert result.regularization < 0.01 * float(result.curve.regularization.max())
+    assert result.normal_force == pytest.approx(1.44, rel=0.15)

@@ -249,6 +249,13 @@ class ParameterScan:
         points = self.log_grid.size
         self.grid = 10**self.log_grid
         self._first_meaningful = min(int(np.searchsorted(self.grid, smallest / 10)), points - 3)
+        # where lambda passes sqrt(g_max) every mode is more than half filtered: the L-curve
+        # has collapsed to its far end, and a corner there is the collapse, not the
+        # transition from noise to smoothing (the grid below 10 is searched as it always was)
+        largest = max(np.sqrt(float(g.max())) if g.size else 10.0, 10.0)
+        self._last_meaningful = max(
+            int(np.searchsorted(self.grid, largest, side="right")), self._first_meaningful + 3
+        )
         if g.size <= _EXACT_LIMIT:
             self._order = None
             self._starts = None
@@ -339,6 +346,7 @@ class ParameterScan:
             # well below the smallest mode's transition the curve collapses to a point: its
             # curvature there is rounding noise, not a corner
             values[:, : self._first_meaningful] = -np.inf
+            values[:, self._last_meaningful :] = -np.inf
             index = np.argmax(values, axis=1)
         else:
             raise ValueError(f"unknown rule {rule!r}")
