@@ -199,78 +199,102 @@ def contact_regions(prepared: Prepared) -> Contact:
         return Contact(False, None, None, 0.0, None, 0.0, 0.0, 0.0, ())
     if n == 1:
         return _one_region(prepared)
+    return _several_regions(prepared)
+
+
+def _region_sums(labels: np.ndarray, size: int, terms: np.ndarray) -> np.ndarray:
+    """Sums of each row of `terms` (k, n) per label 1 .. size - 1, shape (k, size - 1).
+
+    One `np.bincount` for all the rows: row j's labels are shifted by j * size, so each sum
+    takes the same terms in the same order as a `bincount` of that row alone would.
+    """
+    count = len(terms)
+    keys = (labels + np.arange(0, size * count, size)[:, None]).ravel()
+    sums = np.bincount(keys, terms.ravel(), minlength=size * count)
+    return sums.reshape(count, size)[:, 1:]
+
+
+def _label_terms(prepared: Prepared) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The contact taxels' labels, values (float64) and the terms summed per region.
+
+    The terms' rows: 1, row, col, row^2, col^2, row col, the signal above the baseline (w),
+    w row, w col, and the values when the image is calibrated.
+    """
     labels = prepared.labels
     rows, cols = np.nonzero(labels)
-    lab = labels[rows, cols]
     values = prepared.image[rows, cols].astype(np.float64)
-    weight = np.maximum(prepared.smooth[rows, cols] - prepared.baseline, 0.0)
-    rows_f, cols_f = rows.astype(np.float64), cols.astype(np.float64)
-    size = n + 1
-    sums = [
-        np.bincount(lab, w, minlength=size)[1:]
-        for w in (None, rows_f, cols_f, rows_f**2, cols_f**2, rows_f * cols_f, weight)
-    ]
-    count, s_r, s_c, s_rr, s_cc, s_rc, s_w = sums
+    terms = np.empty((10 if prepared.calibrated else 9, rows.size))
+    terms[0] = 1.0
+    rows_f, cols_f, weight = terms[1], terms[2], terms[6]
+    rows_f[:], cols_f[:] = rows, cols
+    np.square(rows_f, out=terms[3])
+    np.square(cols_f, out=terms[4])
+    np.multiply(rows_f, cols_f, out=terms[5])
+    weight[:] = np.maximum(prepared.smooth[rows, cols] - prepared.baseline, 0.0)
+    np.multiply(weight, rows_f, out=terms[7])
+    np.multiply(weight, cols_f, out=terms[8])
+    if prepared.calibrated:
+        terms[9] = values
+    return labels[rows, cols], values, terms
+
+
+def _several_regions(prepared: Prepared) -> Contact:
+    """`contact_regions` for two regions or more, from sums per region label."""
+    labels = prepared.labels
+    size = prepared.n_regions + 1
+    lab, values, terms = _label_terms(prepared)
+    sums = _region_sums(lab, size, terms)
+    # the whole contact as one more column: each measure below is then the whole contact's
+    # there, by the same operations on its sums
+    sums = np.concatenate((sums, sums.sum(axis=1, keepdims=True)), axis=1)
+    count, s_r, s_c, s_rr, s_cc, s_rc, s_w, w_r, w_c = sums[:9]
     # the area counts taxels whose unsmoothed value clears the low threshold: smoothing
     # widens a contact by about its sigma, thresholding the raw values does not
     raw_count = np.bincount(lab[values >= prepared.low], minlength=size)[1:]
-    raw_count = np.where(raw_count > 0, raw_count, count)
-    w_r = np.bincount(lab, weight * rows_f, minlength=size)[1:]
-    w_c = np.bincount(lab, weight * cols_f, minlength=size)[1:]
+    raw_count = np.where(raw_count > 0, raw_count, count[:-1])
+    areas = (np.append(raw_count, raw_count.sum()) * prepared.taxel_area).tolist()
     safe = np.where(s_w > 0, s_w, 1.0)
-    cent_r = np.where(s_w > 0, w_r / safe, s_r / count)
-    cent_c = np.where(s_w > 0, w_c / safe, s_c / count)
-    major, minor, angle = _axes(count, s_r, s_c, s_rr, s_cc, s_rc, prepared.pitch)
+    cent_r = np.where(s_w > 0, w_r / safe, s_r / count).tolist()
+    cent_c = np.where(s_w > 0, w_c / safe, s_c / count).tolist()
+    major, minor, angle = (
+        axis.tolist() for axis in _axes(count, s_r, s_c, s_rr, s_cc, s_rc, prepared.pitch)
+    )
     peaks = np.full(size, -np.inf)
     np.maximum.at(peaks, lab, values)
-    shape = labels.shape
+    # the labels on the array's border (label 0 included, never read)
     border = np.zeros(size, bool)
-    edge = (rows == 0) | (cols == 0) | (rows == shape[0] - 1) | (cols == shape[1] - 1)
-    border[lab[edge]] = True
-    forces = None
+    border[np.concatenate((labels[0], labels[-1], labels[:, 0], labels[:, -1]))] = True
+    forces: list[float | None] = [None] * size
     if prepared.calibrated:
-        forces = np.bincount(lab, values, minlength=size)[1:] * prepared.taxel_area
-    half_r, half_c = (shape[0] - 1) / 2, (shape[1] - 1) / 2
+        region_forces = sums[9, :-1] * prepared.taxel_area
+        forces = [*region_forces.tolist(), float(region_forces.sum())]
+    half_r, half_c = (labels.shape[0] - 1) / 2, (labels.shape[1] - 1) / 2
     row_pitch, col_pitch = prepared.pitch
-    regions = []
-    for i in np.argsort(-count, kind="stable"):
-        regions.append(
-            ContactRegion(
-                centroid_index=(float(cent_r[i]), float(cent_c[i])),
-                centroid_m=(
-                    float((cent_c[i] - half_c) * col_pitch),
-                    float((cent_r[i] - half_r) * row_pitch),
-                ),
-                area_taxels=int(raw_count[i]),
-                area_m2=float(raw_count[i] * prepared.taxel_area),
-                total_force_n=None if forces is None else float(forces[i]),
-                major_axis_m=float(major[i]),
-                minor_axis_m=float(minor[i]),
-                orientation_rad=float(angle[i]),
-                peak=float(peaks[i + 1]),
-                touches_border=bool(border[i + 1]),
-            )
-        )
-    total_w = float(s_w.sum())
-    if total_w > 0:
-        all_r, all_c = float(w_r.sum()) / total_w, float(w_c.sum()) / total_w
-    else:
-        all_r, all_c = float(s_r.sum() / count.sum()), float(s_c.sum() / count.sum())
-    t_count, t_r, t_c, t_rr, t_cc, t_rc = (
-        np.array([s.sum()]) for s in (count, s_r, s_c, s_rr, s_cc, s_rc)
-    )
-    major_all, minor_all, angle_all = _axes(t_count, t_r, t_c, t_rr, t_cc, t_rc, prepared.pitch)
+    in_frame = [
+        ((col - half_c) * col_pitch, (row - half_r) * row_pitch)
+        for row, col in zip(cent_r, cent_c, strict=True)
+    ]
+    # (Python floats: the same values as numpy's scalars, quicker to read)
+    taxels, peak, touches = raw_count.tolist(), peaks.tolist(), border.tolist()
+    regions = [
+        ContactRegion(
+            (cent_r[i], cent_c[i]),
+            in_frame[i],
+            int(taxels[i]),
+            areas[i],
+            forces[i],
+            major[i],
+            minor[i],
+            angle[i],
+            peak[i + 1],
+            touches[i + 1],
+        )  # fmt: skip
+        for i in np.argsort(-count[:-1], kind="stable").tolist()
+    ]
     return Contact(
-        present=True,
-        centroid_index=(all_r, all_c),
-        centroid_m=((all_c - half_c) * col_pitch, (all_r - half_r) * row_pitch),
-        area_m2=float(raw_count.sum() * prepared.taxel_area),
-        total_force_n=None if forces is None else float(forces.sum()),
-        major_axis_m=float(major_all[0]),
-        minor_axis_m=float(minor_all[0]),
-        orientation_rad=float(angle_all[0]),
-        regions=tuple(regions),
-    )
+        True, (cent_r[-1], cent_c[-1]), in_frame[-1], areas[-1], forces[-1], major[-1],
+        minor[-1], angle[-1], tuple(regions),
+    )  # fmt: skip
 
 
 def find_contact(
