@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import asdict
+from dataclasses import fields
 from typing import Any
 
 import numpy as np
@@ -136,20 +136,20 @@ class TactileFeatures:
                 "present": self.holes.present,
                 "count": self.holes.count,
                 "diameter_test": self.holes.diameter_test,
-                "items": [asdict(hole) for hole in self.holes.items],
+                "items": [_fields(hole) for hole in self.holes.items],
             },
             "slots": {
                 "present": self.slots.present,
                 "count": self.slots.count,
-                "items": [asdict(slot) for slot in self.slots.items],
+                "items": [_fields(slot) for slot in self.slots.items],
             },
             "planarity": self.plane.planarity,
             "uniformity": self.plane.uniformity,
             "fill": self.plane.fill,
             "normal": self.plane.normal,
             "tilt_rad": self.plane.tilt_rad,
-            "texture": asdict(self.texture),
-            "regions": [asdict(region) for region in contact.regions],
+            "texture": _fields(self.texture),
+            "regions": [_fields(region) for region in contact.regions],
         }
         return _clean(data)
 
@@ -158,8 +158,26 @@ class TactileFeatures:
         return json.dumps(self.to_dict(), **options)
 
 
+_FIELD_NAMES: dict[type, tuple[str, ...]] = {}  # per record class, its fields' names
+
+
+def _fields(item: Any) -> dict[str, Any]:
+    """A record's fields by name: ``dataclasses.asdict`` of a record of plain values.
+
+    The fields hold numbers, strings, None and tuples of them, which `_clean` copies
+    anyway: ``asdict``'s deep copy of each value (most of the time `to_dict` took) gives
+    nothing more.
+    """
+    names = _FIELD_NAMES.get(type(item))
+    if names is None:
+        names = _FIELD_NAMES[type(item)] = tuple(field.name for field in fields(item))
+    return {name: getattr(item, name) for name in names}
+
+
 def _clean(value: Any) -> Any:
     """Tuples to lists, NumPy scalars to Python, non-finite floats to None."""
+    if type(value) is float:  # (most values: tested first)
+        return value if math.isfinite(value) else None
     if isinstance(value, dict):
         return {key: _clean(item) for key, item in value.items()}
     if isinstance(value, list | tuple):
