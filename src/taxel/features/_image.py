@@ -431,6 +431,6 @@ def prepare(
     seeded = np.bincount(labels[seeds.view(bool)], minlength=count) > 0
     seeded[0] = False
     keep = np.cumsum(seeded).astype(np.int32) * seeded
-    labels = keep[labels]
+    labels = keep.take(cast(np.ndarray, labels))  # (`keep[labels]`, at half the cost)
     mask = (labels > 0).view(np.uint8)
     return Prepared(mask=mask, labels=labels, n_regions=int(seeded.sum()), **common)
