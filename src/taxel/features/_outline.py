@@ -212,13 +212,19 @@ def free_chains(
         # start on a taxel that is not free, so that no free piece wraps around the end
         start = int(free.argmin())
         free = np.concatenate((free[start:], free[:start], _ZERO), dtype=np.int8)
-        steps = free[1:] - free[:-1]  # +1 where a free piece begins, -1 after it ends
-        begins, ends = np.flatnonzero(steps == 1), np.flatnonzero(steps == -1)
+        # +1 where a free piece begins, -1 after it ends: from the first, they alternate
+        changes = np.flatnonzero(free[1:] - free[:-1]).tolist()
+        pieces = [
+            (begin, end)
+            for begin, end in zip(changes[::2], changes[1::2], strict=True)
+            if end - begin >= _MIN_CHAIN
+        ]
+        if not pieces:
+            continue
         # (x, y) as two contiguous float rows, from the start taxel on
         xy = np.concatenate((points[start:], points[:start])).T.astype(float, order="C")
-        for begin, end in zip(begins.tolist(), ends.tolist(), strict=True):
-            if end - begin >= _MIN_CHAIN:
-                chains.append((xy[0, begin + 1 : end + 1], xy[1, begin + 1 : end + 1]))
+        for begin, end in pieces:
+            chains.append((xy[0, begin + 1 : end + 1], xy[1, begin + 1 : end + 1]))
     return chains
 
 
