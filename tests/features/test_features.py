@@ -783,6 +783,17 @@ def test_gaussian_blur_is_opencvs(shape, sigma):
     np.testing.assert_array_equal(gaussian_blur(image, sigma), expected)
 
 
+@pytest.mark.parametrize("size", [1, 2, 7, 40, 1000])
+def test_mean32_is_numpys(size):
+    # the high points' mean height: NumPy's mean of float32 values, without its wrapper
+    from taxel.features._fitting import mean32
+
+    rng = np.random.default_rng(size)
+    for scale in (1e-3, 1.0, 255.0, 1e6):
+        values = (rng.random(size) * scale).astype(np.float32)
+        assert mean32(values) == float(values.mean())
+
+
 def test_records_behave_as_frozen_dataclasses():
     import dataclasses
 

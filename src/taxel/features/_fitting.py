@@ -47,6 +47,14 @@ def mean(a: np.ndarray) -> float:
     return float(np.add.reduce(a)) / a.size
 
 
+def mean32(a: np.ndarray) -> float:
+    """``float(a.mean())`` of a float32 vector, bit for bit, without its wrapper (internal).
+
+    NumPy's steps: the sum in float32, divided in float64 by the count, rounded to float32.
+    """
+    return float(np.float32(float(np.add.reduce(a)) / a.size))
+
+
 def std(a: np.ndarray) -> float:
     """``np.std(a)`` of a float64 vector, bit for bit, without its Python wrapper (internal).
 

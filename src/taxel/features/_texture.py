@@ -10,6 +10,7 @@ import cv2
 import numpy as np
 
 from taxel._validation import check_range
+from taxel.features._fitting import mean32
 from taxel.features._image import Preparation, Prepared, gaussian_blur, prepare
 from taxel.features._noise import noise_from_residual
 from taxel.features._record import record
@@ -274,7 +275,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
         chosen = np.flatnonzero(high)[peaked]
         labels = cv2.connectedComponents(peaks)[1][point_rows[chosen], point_cols[chosen]]
         heights = heights[np.argsort(labels)]
-    return count, float(heights.mean()) - prepared.baseline
+    return count, mean32(heights) - prepared.baseline
 
 
 def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Texture:
