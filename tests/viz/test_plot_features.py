@@ -82,3 +82,25 @@ def test_features_of_another_image_or_pitch_are_refused():
 
     axes = Figure().add_subplot()
     assert plot_features(image, features, (1e-3, 1e-3), ax=axes) is axes.figure
+
+
+def test_edges_are_drawn_as_the_features_were_prepared():
+    from taxel.features import detect_edges
+    from taxel.mechanics import make_indenter
+    from taxel.sensor import make_sensor
+
+    sensor = make_sensor("vhdta128")
+    rest = np.zeros(sensor.load_grid.shape)
+    reference = np.mean([sensor.frame_from_pressure(rest, rng=s).raw for s in range(4)], axis=0)
+    frame = sensor.press(make_indenter("washer"), normal_force=10.0, rng=3).raw
+    features = extract(frame, sensor, reference=reference)
+    figure = plot_features(frame, features, sensor, reference=reference)
+    axes = figure.axes[0]
+    # the sensor's own preparation (not a bare pitch: the glass's scratches would be kept)
+    edges = detect_edges(frame, sensor, reference=reference)
+    drawn = axes.get_lines()[0]
+    np.testing.assert_array_equal(drawn.get_xdata(), edges.cols)
+    np.testing.assert_array_equal(drawn.get_ydata(), edges.rows)
+    assert edges.n_edges != detect_edges(frame, sensor.taxel_pitch).n_edges
+    np.testing.assert_allclose(axes.get_images()[0].get_array(), frame - reference)
+    assert axes.get_title() == "surface, 1 hole(s), 0 slot(s) (reference subtracted)"

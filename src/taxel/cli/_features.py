@@ -288,19 +288,19 @@ def _run(arguments: argparse.Namespace) -> int:
     pose = None if arguments.pose is None else _load_pose(Path(arguments.pose))
     reference = None if arguments.reference is None else _load_reference(arguments, image.shape)
     integers = np.issubdtype(stored.dtype, np.integer)  # (their noise is read in code steps)
-    features = extract(
-        stored if integers else image,
-        pitch,
-        pose=pose,
-        calibrated=arguments.calibrated,
-        noise=arguments.noise,
-        defects=arguments.defects,
-        reference=reference,
-    )
+    given = stored if integers else image
+    preparation = {
+        "calibrated": arguments.calibrated,
+        "noise": arguments.noise,
+        "defects": arguments.defects,
+        "reference": reference,
+    }
+    features = extract(given, pitch, pose=pose, **preparation)
     if arguments.figure:  # first: a figure that cannot be written stops before any output
         from taxel.viz import plot_features
 
-        _write_figure(Path(arguments.figure), plot_features(image, features, pitch))
+        figure = plot_features(given, features, pitch, **preparation)
+        _write_figure(Path(arguments.figure), figure)
     data = features.to_dict()
     if arguments.json:
         sys.stdout.write(json.dumps(data, indent=2) + "\n")

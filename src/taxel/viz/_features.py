@@ -3,14 +3,24 @@
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any, Unpack
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from taxel.features import Preparation
 
 __all__ = ["plot_features"]
 
 
-def plot_features(image: Any, features: Any, sensor_or_pitch: Any, *, ax: Any = None) -> Any:
+def plot_features(
+    image: Any,
+    features: Any,
+    sensor_or_pitch: Any,
+    *,
+    ax: Any = None,
+    **preparation: Unpack[Preparation],
+) -> Any:
     """Draw a tactile image with its edges, fitted line or circle, holes and slots.
 
     Parameters
@@ -21,9 +31,13 @@ def plot_features(image: Any, features: Any, sensor_or_pitch: Any, *, ax: Any = 
     features : taxel.features.TactileFeatures
         From `taxel.features.extract`.
     sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
-        The taxel pitch used for `features` [m].
+        The taxel pitch, or the sensor, given to `extract` for `features`.
     ax : matplotlib.axes.Axes, optional
         Axes to draw on; a new figure is made when omitted.
+    **preparation
+        The keywords `extract` was given (`calibrated`, `smoothing`, `baseline`,
+        `defects`, `noise`, `reference`), so that the edges drawn are found as the
+        features were; a `reference` is also subtracted from the image drawn.
 
     Returns
     -------
@@ -54,6 +68,11 @@ def plot_features(image: Any, features: Any, sensor_or_pitch: Any, *, ax: Any = 
 
     array, (row_pitch, col_pitch) = _checked(image, features, sensor_or_pitch, ax)
     rows, cols = array.shape
+    # the image as given (integers keep their noise's steps), prepared as the features were
+    edges = detect_edges(image, sensor_or_pitch, **preparation)
+    reference = preparation.get("reference")
+    if reference is not None:
+        array = array - np.asarray(reference, dtype=float)
 
     def to_index(x: float, y: float) -> tuple[float, float]:
         return x / col_pitch + (cols - 1) / 2, y / row_pitch + (rows - 1) / 2
@@ -64,7 +83,6 @@ def plot_features(image: Any, features: Any, sensor_or_pitch: Any, *, ax: Any = 
     else:
         figure = ax.figure
     ax.imshow(array, cmap="gray", interpolation="nearest")
-    edges = detect_edges(array, (row_pitch, col_pitch))
     ax.plot(
         edges.cols, edges.rows, "s", color="tab:orange", markersize=1.5, alpha=0.8, label="edges"
     )
@@ -105,8 +123,10 @@ def plot_features(image: Any, features: Any, sensor_or_pitch: Any, *, ax: Any = 
         ax.plot([col], [row], "+", color="tab:blue", markersize=10, mew=2, label="centroid")
     ax.set_xlim(-0.5, cols - 0.5)
     ax.set_ylim(rows - 0.5, -0.5)
+    tared = "" if reference is None else " (reference subtracted)"
     ax.set_title(
-        f"{shape.contact_type}, {features.holes.count} hole(s), {features.slots.count} slot(s)"
+        f"{shape.contact_type}, {features.holes.count} hole(s), {features.slots.count} "
+        f"slot(s){tared}"
     )
     ax.set_xlabel(f"column [taxels of {col_pitch * 1e3:.3g} mm]")
     ax.set_ylabel(f"row [taxels of {row_pitch * 1e3:.3g} mm]")
