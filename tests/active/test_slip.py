@@ -138,16 +138,18 @@ def test_detector_finds_the_onsets(slip):
 
 
 def test_static_backup_catches_what_the_piezo_misses(slip):
-    # a PVDF threshold no innovation reaches: only the static run-ahead can decide
-    deaf = _detector(piezo_threshold=1e9, backup_threshold=5.0)
+    # PVDF thresholds no innovation reaches: only the static run-ahead can decide
+    deaf = _detector(piezo_threshold=1e9, onset_threshold=None, backup_threshold=5.0)
     gross = deaf.run(slip.static_frames, slip.piezo_frames, frame_rate=1000.0).first("gross")
     alone = _detector(gross_threshold=5.0).run(slip.static_frames, frame_rate=1000.0)
     assert gross.channel == "speed" and gross.frame == alone.first("gross").frame
     # left out, nothing decides; and the earlier of the two channels wins
-    off = _detector(piezo_threshold=1e9, backup_threshold=None, late_threshold=None)
+    off = _detector(
+        piezo_threshold=1e9, onset_threshold=None, backup_threshold=None, late_threshold=None
+    )
     assert off.run(slip.static_frames, slip.piezo_frames, frame_rate=1000.0).first("gross") is None
     # the late channel alone (the long gap's run-ahead) still finds the slide, after the onset
-    late = _detector(piezo_threshold=1e9, backup_threshold=None)
+    late = _detector(piezo_threshold=1e9, onset_threshold=None, backup_threshold=None)
     slide = late.run(slip.static_frames, slip.piezo_frames, frame_rate=1000.0).first("gross")
     assert slide.channel == "late" and -2 <= slide.frame - slip.gross_frame <= 20
     both = _detector(backup_threshold=5.0).run(

@@ -15,7 +15,9 @@ Two signals (chapter seed, section 25.3, "Piezoelectric"; Ellis seed, section 2.
   (backward: the friction drops from mu_s N to mu_k N, and the traction's stress under the
   pad with it), the forward innovations of the sliding pattern and of its stick-slip
   vibrations follow from about 4 frames after the onset; the CUSUM squares the innovation,
-  so both count. A held or steadily loaded contact leaves only noise.
+  so both count. A held or steadily loaded contact leaves only noise. The shape of the
+  onset is also known: the pattern speeds up in the last frames of the stick phase (the
+  stick disc vanishes), then brakes; a matched filter for that shape tests it directly.
 
 Decisions are causal (frame k uses frames <= k). The first `warm_up` frames set each
 channel's noise level and the initial state: holding (the pattern at rest) or already
@@ -26,7 +28,9 @@ sliding, in which case no onset is reported. Then:
   with it the slip annulus;
 - gross slip, from the PVDF array when its frames are given: a one-sided CUSUM (Page
   1954) of the squared innovation, S_k = max(0, S_{k-1} + z_k^2 - 1 - `drift`), passes
-  `piezo_threshold` (channel 'piezo'). From the static array alone otherwise: the pattern
+  `piezo_threshold` (channel 'piezo'); or the innovation of the last 6 frames, correlated
+  with the mean onset shape `ONSET_TEMPLATE` (`matched_filter`, N(0, 1) on noise), passes
+  `onset_threshold` (channel 'onset'). From the static array alone otherwise: the pattern
   runs ahead of where its recent motion would have put it (a line fitted to the positions
   of a reference window of 15 frames, ending 3 frames before, extrapolated to the current
   frame; the deviation along the direction of travel, in noise units and averaged over 2
@@ -67,6 +71,7 @@ import numpy as np
 from taxel._validation import as_finite_array, check_positive
 from taxel.active._slip_signals import (
     cusum,
+    matched_filter,
     motion_innovation,
     register,
     restore_charge,
@@ -81,6 +86,10 @@ GROSS_THRESHOLD = 5.0
 PIEZO_THRESHOLD = 15.0
 BACKUP_THRESHOLD = 8.0
 LATE_THRESHOLD = 15.5
+ONSET_THRESHOLD = 4.25
+# the mean PVDF innovation z of the 120 calibration slip trials (seeds 101 and 303) in the
+# frames onset - 2 .. onset + 3: the stick phase's last speed-up, then the braking
+ONSET_TEMPLATE = (0.7, 1.2, -0.5, -2.5, -2.2, -0.3)
 
 _REFERENCE = 15  # frames in the reference window of the speed
 _GAP = 3  # frames between the reference window and the current frame
@@ -101,7 +110,7 @@ class SlipEvent:
     time : float
         That frame's time [s] from the first frame.
     channel : str
-        What decided it: 'displacement', 'speed', 'late' or 'piezo'.
+        What decided it: 'displacement', 'speed', 'late', 'piezo' or 'onset'.
     """
 
     kind: str
@@ -145,6 +154,9 @@ class SlipDetection:
         [Hz].
     position_noise : float
         Standard deviation of one frame's pattern position over the warm-up [m].
+    onset_statistic : numpy.ndarray
+        (n_frames,) the PVDF innovation's matched filter for the onset shape (NaN during
+        the warm-up; empty, or all NaN, without piezo frames).
     """
 
     events: tuple[SlipEvent, ...]
@@ -156,6 +168,7 @@ class SlipDetection:
     piezo_statistic: np.ndarray = field(repr=False)
     frame_rate: float = 1000.0
     position_noise: float = float("nan")
+    onset_statistic: np.ndarray = field(repr=False, default_factory=lambda: np.empty(0))
 
     def first(self, kind: str) -> SlipEvent | None:
         """The event of `kind` ('incipient' or 'gross'), or None."""
@@ -196,6 +209,10 @@ class SlipDetector:
         standard deviations, counted once that window lies wholly after the incipient
         decision (decides gross slip with or without PVDF frames: slow slides that the
         other channels miss); None leaves it out.
+    onset_threshold : float or None, default 4.25
+        With PVDF frames, the matched filter of the innovation for the onset shape
+        (`ONSET_TEMPLATE`, in noise standard deviations) decides gross slip past this
+        threshold; None leaves it out.
     drift : float, default 2.0
         CUSUM drift nu: the squared innovation, in excess of its mean 1, that does not
         accumulate.
@@ -227,6 +244,7 @@ class SlipDetector:
         piezo_threshold: float = PIEZO_THRESHOLD,
         backup_threshold: float | None = BACKUP_THRESHOLD,
         late_threshold: float | None = LATE_THRESHOLD,
+        onset_threshold: float | None = ONSET_THRESHOLD,
         drift: float = 2.0,
         cutoff: float = 160.0,
         rest_speed: float = 5e-3,
@@ -251,6 +269,9 @@ class SlipDetector:
         )
         self.late_threshold = (
             None if late_threshold is None else check_positive("late_threshold", late_threshold)
+        )
+        self.onset_threshold = (
+            None if onset_threshold is None else check_positive("onset_threshold", onset_threshold)
         )
         self.drift = check_positive("drift", drift, allow_zero=True)
         self.cutoff = check_positive("cutoff", cutoff)
@@ -296,14 +317,16 @@ class SlipDetector:
         sliding = float(np.linalg.norm(trend[1])) * rate > self.rest_speed
         speed_statistic = run_ahead(displacement, sigma, self.warm_up, _REFERENCE, _GAP)
         late_statistic = run_ahead(displacement, sigma, self.warm_up, _REFERENCE, _LATE_GAP)
-        piezo_statistic = np.full(n, np.nan)
+        piezo_statistic, onset_statistic = np.full(n, np.nan), np.full(n, np.nan)
         if piezo_frames is not None:
             piezo = as_finite_array("piezo_frames", piezo_frames, ndim=3)
             if piezo.shape[0] != n:
                 raise ValueError(
                     f"`piezo_frames` has {piezo.shape[0]} frames but `static_frames` has {n}"
                 )
-            piezo_statistic = self.piezo_cusum(piezo, rate)
+            z = self.piezo_innovation(piezo, rate)
+            piezo_statistic = cusum(np.nan_to_num(z**2 - 1.0), self.warm_up, self.drift)
+            onset_statistic = matched_filter(z, ONSET_TEMPLATE, self.warm_up)
         statistics = SlipDetection(
             events=(),
             initial_state="sliding" if sliding else "holding",
@@ -314,6 +337,7 @@ class SlipDetector:
             piezo_statistic=piezo_statistic,
             frame_rate=rate,
             position_noise=sigma,
+            onset_statistic=onset_statistic,
         )
         return self.decide(statistics)
 
@@ -375,6 +399,9 @@ class SlipDetector:
         channels = [("speed", speed_statistic, self.gross_threshold)]
         if not np.all(np.isnan(piezo_statistic)):
             channels = [("piezo", piezo_statistic, self.piezo_threshold)]
+            onset = detection.onset_statistic
+            if self.onset_threshold is not None and onset.size == piezo_statistic.size:
+                channels.append(("onset", onset, self.onset_threshold))
             if self.backup_threshold is not None:
                 channels.append(("speed", armed(speed_statistic, _GAP), self.backup_threshold))
         if self.late_threshold is not None:

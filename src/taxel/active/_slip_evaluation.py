@@ -213,7 +213,7 @@ class SlipCalibration:
     ----------
     detector : SlipDetector
         The detector with the chosen `gross_threshold`, `piezo_threshold`,
-        `backup_threshold` and `late_threshold`.
+        `onset_threshold`, `backup_threshold` and `late_threshold`.
     evaluation : SlipEvaluation
         Its score on the calibration trials, with their PVDF frames.
     static_evaluation : SlipEvaluation
@@ -235,6 +235,7 @@ class SlipCalibration:
         return {
             "gross_threshold": self.detector.gross_threshold,
             "piezo_threshold": self.detector.piezo_threshold,
+            "onset_threshold": self.detector.onset_threshold,
             "backup_threshold": self.detector.backup_threshold,
             "late_threshold": self.detector.late_threshold,
             "false_alarm_budget": self.false_alarm_budget,
@@ -252,6 +253,7 @@ def calibrate_slip_detector(
     early_tolerance: int = 2,
     gross_thresholds: Any = None,
     piezo_thresholds: Any = None,
+    onset_thresholds: Any = None,
     backup_thresholds: Any = None,
     late_thresholds: Any = None,
     **settings: Any,
@@ -274,6 +276,9 @@ def calibrate_slip_detector(
         Candidates; default 3-20 in steps of 0.5, 4-60 in steps of 1, 3-20 in steps
         of 0.5 and 3-40 in steps of 0.5 (the backup and the late channel left out, None,
         are always candidates too).
+    onset_thresholds : array_like, optional
+        Candidates for the onset matched filter; default 2.5-8 in steps of 0.25 (left out,
+        None, is always a candidate too).
     **settings
         Other `SlipDetector` settings (fixed); `piezo_time_constant` defaults to that of
         `slip_sensors`' PVDF array.
@@ -286,8 +291,9 @@ def calibrate_slip_detector(
     -----
     The statistics of each trial are computed once; the thresholds only decide on them
     (`SlipDetector.decide`). `gross_threshold` is set on the static channel alone (it
-    decides without PVDF frames), then `piezo_threshold` with the PVDF frames and no
-    backup, then `backup_threshold` with both, each without the late channel; then
+    decides without PVDF frames), then `piezo_threshold` with the PVDF frames and neither
+    the onset filter nor the backup, then `onset_threshold`, then `backup_threshold`, each
+    without the late channel; then
     `late_threshold` with all of them (it decides late, so it adds to the slips detected
     at all rather than within `latency`, unless it brings alarms).
     Candidates over the budget are kept only if none is within it (then the one with the
@@ -298,11 +304,19 @@ def calibrate_slip_detector(
         raise ValueError("`sequences` must hold at least one trial")
     gross_grid = np.arange(3.0, 20.01, 0.5) if gross_thresholds is None else gross_thresholds
     piezo_grid = np.arange(4.0, 60.01, 1.0) if piezo_thresholds is None else piezo_thresholds
+    onset_grid = np.arange(2.5, 8.01, 0.25) if onset_thresholds is None else onset_thresholds
     backup_grid = np.arange(3.0, 20.01, 0.5) if backup_thresholds is None else backup_thresholds
     late_grid = np.arange(3.0, 40.01, 0.5) if late_thresholds is None else late_thresholds
     settings = {**_default_settings(), **settings}
     fused = [_detect(SlipDetector(**settings), s) for s in sequences]
-    static = [replace(f, piezo_statistic=np.full_like(f.piezo_statistic, np.nan)) for f in fused]
+    static = [
+        replace(
+            f,
+            piezo_statistic=np.full_like(f.piezo_statistic, np.nan),
+            onset_statistic=np.full_like(f.onset_statistic, np.nan),
+        )
+        for f in fused
+    ]
 
     def best(name: str, grid: Any, statistics: list[SlipDetection], fixed: dict) -> tuple:
         ranked = []
@@ -319,11 +333,16 @@ def calibrate_slip_detector(
     gross = best("gross_threshold", gross_grid, static, {"late_threshold": None})
     chosen = {
         "gross_threshold": gross[1].gross_threshold,
+        "onset_threshold": None,
         "backup_threshold": None,
         "late_threshold": None,
     }
     piezo = best("piezo_threshold", piezo_grid, fused, chosen)
     chosen["piezo_threshold"] = piezo[1].piezo_threshold
+    # left out (inf) wins a tie: it is the largest candidate
+    onset_candidates = np.append(np.asarray(onset_grid, dtype=float), np.inf)
+    onset = best("onset_threshold", onset_candidates, fused, chosen)
+    chosen["onset_threshold"] = onset[1].onset_threshold
     # the backup left out (inf) wins a tie: it is the largest candidate
     candidates = np.append(np.asarray(backup_grid, dtype=float), np.inf)
     backup = best("backup_threshold", candidates, fused, chosen)

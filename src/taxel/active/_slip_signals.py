@@ -10,15 +10,19 @@ r"""The signals behind slip detection: pattern registration and the PVDF motion 
   along the direction in which the contact pattern has been moving (see the notes there).
 - `run_ahead`: how far the registered pattern runs ahead of its extrapolated track.
 - `cusum`: Page's one-sided CUSUM.
+- `matched_filter`: the correlation of a white N(0, 1) sequence with a known shape.
 """
 
 from __future__ import annotations
+
+from typing import Any
 
 import numpy as np
 from scipy import ndimage
 
 __all__ = [
     "cusum",
+    "matched_filter",
     "motion_innovation",
     "register",
     "restore_charge",
@@ -70,6 +74,34 @@ def cusum(z: np.ndarray, start: int, drift: float) -> np.ndarray:
     for k in range(start, z.size):
         total = max(0.0, total + z[k] - drift)
         statistic[k] = total
+    return statistic
+
+
+def matched_filter(z: np.ndarray, template: Any, start: int) -> np.ndarray:
+    r"""Correlation of `z` with `template` ending at each frame, in noise units, (n,).
+
+    :math:`m_k = \sum_i s_i z_{k - L + 1 + i} / \lVert s \rVert` for the L-frame template s:
+    N(0, 1) where z is white and N(0, 1), and largest (in expectation) where the frames
+    just before k follow the template's shape. NaN before frame `start` (and where the
+    window reaches before the first frame); NaN values of z count as 0.
+
+    Examples
+    --------
+    >>> matched_filter(np.array([0.0, 1.0, -2.0, 0.0]), [1.0, -2.0], 1).round(3).tolist()
+    [nan, -0.894, 2.236, -0.894]
+    """
+    shape = np.asarray(template, dtype=float)
+    length = shape.size
+    values = np.nan_to_num(np.asarray(z, dtype=float))
+    statistic = np.full(values.shape, np.nan)
+    if length == 0 or values.size < length:
+        return statistic
+    total = sum(
+        weight * values[index : values.size - length + 1 + index]
+        for index, weight in enumerate(shape)
+    )
+    statistic[length - 1 :] = total / np.linalg.norm(shape)
+    statistic[: max(start, 0)] = np.nan
     return statistic
 
 
