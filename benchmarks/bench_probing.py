@@ -292,7 +292,9 @@ def _slip(quick: bool) -> list[str]:
         "(10-35 mm/s): the object reaches its sliding speed over several relaxation times of "
         "the friction while the traction's stress falls with it, which the registration reads "
         "as a step back, so the short gap's track keeps up and its run-ahead stayed below "
-        "threshold for the whole 60 ms recorded after the onset (0.4-1.8 mm of sliding).\n",
+        "threshold for the whole 60 ms recorded after the onset (0.4-1.8 mm of sliding). "
+        "Before the onset filter (commit 0284f77), on all 300 evaluation trials: detected "
+        "97 %, within 3 frames 40 %, false alarms 4 % (6 of 150), latency median 5 frames.\n",
         "| latency on all evaluation trials, both arrays [frames] | -2..0 | 1..3 | 4..6 | 7..10 "
         "| 11..20 | > 20 |",
         "|---|---|---|---|---|---|---|",
@@ -325,7 +327,9 @@ def _slip(quick: bool) -> list[str]:
         f"{bound['above3']:.0%} of the trials and 5 in {bound['above5']:.0%}. A stick-slip "
         f"event has started by then in {bound['event']:.0%} of them on average. A detector that "
         "caught every drop above 3 standard deviations in a single frame and every event the "
-        f"moment it starts would reach {bound['ceiling']:.0%} within 3 frames; a false-alarm "
+        f"moment it starts would reach {bound['ceiling']:.0%} within 3 frames, a loose "
+        "ceiling: it counts each stick-slip event as seen the moment it starts, though one "
+        "event moves the PVDF innovation by only a standard deviation or two; a false-alarm "
         "rate of a few per cent over hundreds of held frames needs more than 4 standard "
         "deviations. The false alarms: a load ramp that stops abruptly close to mu_s N jerks "
         "the pattern like a slip, and a single large innovation in a still contact can pass "
