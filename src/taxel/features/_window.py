@@ -29,10 +29,16 @@ def contact_area(prepared: Prepared) -> int:
 
 
 def contact_box(prepared: Prepared) -> tuple[int, int, int, int]:
-    """(left, top, width, height) of the contact mask (internal; kept in ``prepared.memo``)."""
+    """(left, top, width, height) of the contact mask (internal; kept in ``prepared.memo``).
+
+    A region's extreme taxels lie on its outer outline: with one outline at hand, the
+    box of its points is the mask's, at a fraction of the cost of reading the whole mask.
+    """
     box = prepared.memo.get("box")
     if box is None:
-        left, top, width, height = cv2.boundingRect(prepared.mask)
+        outlines = prepared.outlines
+        source = outlines[0] if outlines is not None and len(outlines) == 1 else prepared.mask
+        left, top, width, height = cv2.boundingRect(source)
         box = prepared.memo["box"] = (left, top, width, height)
     return box
 
