@@ -376,31 +376,31 @@ def _perforated(holes: list[Hole], evenness: list[float]) -> bool:
 
 def gaps_core(
     prepared: Prepared, *, textured: bool = False
-) -> tuple[list[Hole], list[Slot], np.ndarray]:
+) -> tuple[list[Hole], list[Slot], np.ndarray | None]:
     """Holes, slots, and the mask of the gaps they occupy (internal).
 
     `textured`: the contact is a texture (see `classify_contact`); its basins are then
-    holes only when they make a perforated sheet, and never slots.
+    holes only when they make a perforated sheet, and never slots. The mask (uint8) is
+    None when no gap was found (most contacts: it is made with the first gap).
     """
-    explained = np.zeros(prepared.image.shape, np.uint8)
+    explained: np.ndarray | None = None
     holes: list[Hole] = []
     slots: list[Slot] = []
     evenness: list[float] = []
     if not prepared.present:
         return holes, slots, explained
-    marked = False  # whether `explained` holds a gap yet
     # the gaps refused as too near the border (numbered from 1), once there is one, and
     # their areas (see `_SAME_GAP`)
     refused: np.ndarray | None = None
     refused_areas = [0.0]
     for contour, level in basins(prepared):
         within = 0  # the refused gap the basin lies in, if any
-        if marked or refused is not None:  # a basin explained at a higher level is done
+        if explained is not None or refused is not None:  # one explained higher up is done
             moments = cv2.moments(contour)
             if moments["m00"] > 0:
                 col, row = moments["m10"] / moments["m00"], moments["m01"] / moments["m00"]
                 at = int(round(row)), int(round(col))
-                if explained[at]:
+                if explained is not None and explained[at]:
                     continue
                 if refused is not None:
                     within = int(refused[at])
@@ -422,8 +422,9 @@ def gaps_core(
             evenness.append(even)
         elif not textured:
             slots.append(found)
+        if explained is None:
+            explained = np.zeros(prepared.image.shape, np.uint8)
         explained[where] |= cast(np.ndarray, cv2.dilate(region, _GROW))  # uint8, as region
-        marked = True
     if textured and not _perforated(holes, evenness):
         holes = []
     return holes, slots, explained

@@ -176,7 +176,7 @@ def bends(arms: tuple[float, float]) -> bool:
 def free_chains(
     contours: Sequence[np.ndarray],
     shape: tuple[int, int],
-    explained: np.ndarray,
+    explained: np.ndarray | None,
     margin: int = 1,
 ) -> list[tuple[np.ndarray, np.ndarray]]:
     """Open pieces of the contacts' outlines, as (cols, rows) taxel arrays.
@@ -191,7 +191,7 @@ def free_chains(
     # the taxels where an outline is free: inside the margin, off the gaps' walls (with no
     # gap, the margin alone, tested on the outline's points)
     allowed = None
-    if cv2.countNonZero(explained):
+    if explained is not None and cv2.countNonZero(explained):
         allowed = np.zeros(shape, np.uint8)
         inner = (slice(margin, rows - margin), slice(margin, cols - margin))
         allowed[inner] = explained[inner] == 0

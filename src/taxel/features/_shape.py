@@ -201,7 +201,7 @@ def is_textured(contact: Contact, high_point_count: int) -> bool:
 
 
 def _free_outline(
-    contours: Sequence[np.ndarray], prepared: Prepared, explained: np.ndarray
+    contours: Sequence[np.ndarray], prepared: Prepared, explained: np.ndarray | None
 ) -> tuple[str, float, float, str] | None:
     """Type from the free outline pieces (see the module notes), or None without any.
 
@@ -245,7 +245,7 @@ def shape_core(
     *,
     n_holes: int,
     n_slots: int,
-    explained: np.ndarray,
+    explained: np.ndarray | None,
     high_point_count: int,
     point_size: float = _POINT_SIZE,
     contours: Sequence[np.ndarray] | None = None,
