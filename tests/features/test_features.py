@@ -36,7 +36,7 @@ from taxel.features import (
     texture_measures,
 )
 from taxel.features._gaps import gaps_core
-from taxel.features._image import component_outlines, prepare
+from taxel.features._image import _peak_region, component_outlines, prepare
 from taxel.frames import make_pose
 from taxel.sensor import make_sensor
 
@@ -667,6 +667,34 @@ def test_outlines_of_one_region_in_the_order_findcontours_lists_them(seed):
         listed, _ = cv2.findContours(region, cv2.RETR_LIST, cv2.CHAIN_APPROX_NONE)
         assert len(found) == len(listed)
         assert all(np.array_equal(a, b) for a, b in zip(found, listed, strict=True))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_the_peaks_region_is_the_candidates_but_the_others(seed):
+    # prepare takes the peak's region as the candidates but the other regions when these
+    # are specks (outlines under 4 points), cleared point by point
+    rng = np.random.default_rng(seed)
+    for _ in range(100):
+        size = int(rng.integers(8, 64))
+        noise = ndimage.gaussian_filter(rng.random((size, size)), rng.uniform(0.3, 2.5))
+        image = (noise > rng.uniform(0.45, 0.6)).astype(np.uint8)
+        image[rng.random((size, size)) < 0.02] = 1  # specks
+        count, labels = cv2.connectedComponents(image, connectivity=8)
+        if count < 3:
+            continue
+        rows, cols = np.nonzero(image)
+        pick = int(rng.integers(rows.size))
+        peak = (int(cols[pick]), int(rows[pick]))
+        smooth = rng.random((size, size)).astype(np.float32)
+        outlines, hierarchy = cv2.findContours(image, cv2.RETR_CCOMP, cv2.CHAIN_APPROX_NONE)
+        found = _peak_region(image, smooth, outlines, hierarchy, peak)
+        peaks = labels == labels[peak[1], peak[0]]
+        if found is None:  # a larger region left out, or the peak in a speck
+            continue
+        region, left_out = found
+        assert region.dtype == np.uint8
+        assert np.array_equal(region, peaks.astype(np.uint8))
+        assert left_out == float(smooth[image.astype(bool) & ~peaks].max())
 
 
 def _sector(rng, size=64):

@@ -210,6 +210,41 @@ def component_outlines(
     return (*holes, outlines[index])
 
 
+def _peak_region(
+    candidates: np.ndarray,
+    smooth: np.ndarray,
+    outlines: Sequence[np.ndarray],
+    hierarchy: np.ndarray,
+    peak_at: Sequence[int],
+) -> tuple[np.ndarray, float] | None:
+    """The one region that is no speck, and the largest value left out of it.
+
+    `outlines` and `hierarchy`: ``cv2.findContours(candidates, cv2.RETR_CCOMP, ...)``;
+    every region has one outer outline, at the top level. When each other region's
+    outline has fewer than 4 points, the region is those points (it has no inner taxel:
+    one would need 4 around it), as specks of noise mostly are: returns the candidates
+    without them (uint8) and the largest value of `smooth` on them, read point by point.
+    None when another region is no speck, or the peak lies in a speck.
+    """
+    links = hierarchy[0].tolist()  # per outline: next, previous, first child, parent
+    largest = None
+    for outline, link in zip(outlines, links, strict=True):
+        if link[3] < 0 and outline.shape[0] >= 4:
+            if largest is not None:
+                return None  # (a second region that is no speck)
+            largest = outline
+    if largest is None:
+        return None
+    region = candidates.copy()
+    left_out = -math.inf
+    for outline, link in zip(outlines, links, strict=True):
+        if link[3] < 0 and outline is not largest:
+            for x, y in outline[:, 0].tolist():
+                region[y, x] = 0
+                left_out = max(left_out, float(smooth[y, x]))
+    return None if region[peak_at[1], peak_at[0]] == 0 else (region, left_out)
+
+
 def _as_image(image: Any, name: str = "image") -> np.ndarray:
     """Validate a 2-D numeric image (the parameter `name`) and return it as float32."""
     array = np.asarray(image)
@@ -414,13 +449,18 @@ def prepare(
             **common,
         )
     # several candidate regions (a contact and specks of noise, scratches), usually one
-    # seeded: the peak's, which a flood fill from the peak gives more cheaply than labelling
-    filled = np.zeros((values.shape[0] + 2, values.shape[1] + 2), np.uint8)
-    cv2.floodFill(candidates, filled, peak_at, 1, 0, 0, _FILL_8 | cv2.FLOODFILL_MASK_ONLY)
-    region = np.ascontiguousarray(filled[1:-1, 1:-1])
+    # seeded: the peak's, which is the candidates but the specks, or else a flood fill
+    # from the peak (either costs less than labelling)
     # the largest value left out: of the other candidates (the rest lies under `low`);
     # under `high` (in float32, as the seeds' comparison), none of them holds a seed
-    left_out = cv2.minMaxLoc(smooth, candidates ^ region)[1]
+    picked = _peak_region(candidates, smooth, outlines, hierarchy, peak_at)
+    if picked is None:
+        filled = np.zeros((values.shape[0] + 2, values.shape[1] + 2), np.uint8)
+        cv2.floodFill(candidates, filled, peak_at, 1, 0, 0, _FILL_8 | cv2.FLOODFILL_MASK_ONLY)
+        region = np.ascontiguousarray(filled[1:-1, 1:-1])
+        left_out = cv2.minMaxLoc(smooth, candidates ^ region)[1]
+    else:
+        region, left_out = picked
     if left_out < np.float32(high):
         found = component_outlines(region, outlines, hierarchy)
         return Prepared(
