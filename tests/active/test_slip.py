@@ -16,31 +16,6 @@ from taxel.active import (
 from taxel.active._slip_signals import cusum, motion_innovation, register, restore_charge
 from taxel.transducers import charge_amplifier_output
 
-SLIP = SlipScenario(
-    kind="slip",
-    normal_force=2.0,
-    radius=0.05,
-    friction=0.8,
-    kinetic_ratio=0.8,
-    initial_load=0.0,
-    hold_time=0.06,
-    load_time=0.1,
-    sliding_speed=0.04,
-    relaxation_time=2e-3,
-    direction=0.5,
-    seed=7,
-)
-
-
-@pytest.fixture(scope="module")
-def slip():
-    return simulate_slip(SLIP)
-
-
-@pytest.fixture(scope="module")
-def hold():
-    return simulate_slip(SlipScenario(kind="hold", load_time=0.0, seed=3))
-
 
 @pytest.fixture(scope="module")
 def steady():
@@ -60,17 +35,17 @@ def test_sensors_run_at_one_kilohertz():
     assert not static.is_dynamic and piezo.is_dynamic
 
 
-def test_stick_follows_cattaneo_mindlin(slip):
+def test_stick_follows_cattaneo_mindlin(slip, slip_scenario):
     stuck = slip.stick_ratio > 0
     last = int(np.nonzero(stuck)[0][-1])
     assert last == 159  # the ramp ends at 160 ms
-    limit = SLIP.friction * SLIP.normal_force
+    limit = slip_scenario.friction * slip_scenario.normal_force
     # the load ramps from 0 to mu N over the 100 ms ramp, and c / a = (1 - T / mu N)^(1/3)
     assert slip.tangential_load[last] == pytest.approx(0.99 * limit, rel=1e-6)
     ratio = slip.tangential_load[stuck] / limit
     assert slip.stick_ratio[stuck] == pytest.approx((1 - ratio) ** (1 / 3), abs=1e-9)
     # the pattern moved by the pad's tangential compliance, delta = K mu N (1 - (c/a)^2)
-    direction = np.array([np.cos(SLIP.direction), np.sin(SLIP.direction)])
+    direction = np.array([np.cos(slip_scenario.direction), np.sin(slip_scenario.direction)])
     moved = (slip.pattern_offset[last] - slip.pattern_offset[0]) @ direction
     expected = _compliance(slip) * limit * (1 - slip.stick_ratio[last] ** 2)
     assert moved == pytest.approx(expected, rel=0.02)
@@ -78,34 +53,40 @@ def test_stick_follows_cattaneo_mindlin(slip):
     assert np.all(slip.sliding_displacement[stuck] == 0)
 
 
-def test_gross_slip_relaxes_friction_and_slides(slip):
+def test_gross_slip_relaxes_friction_and_slides(slip, slip_scenario):
     onset = slip.gross_frame
     # truth: the first frame past 2 um of sliding
     assert slip.sliding_displacement[onset] > 2e-6 >= slip.sliding_displacement[onset - 1]
     # sliding = v (t - tau (1 - exp(-t / tau))) + v_0 tau (1 - exp(-t / tau)) + the pad's
     # recoil K (mu_s - mu_k) N, v_0 the mean stick-phase speed over the last tau
-    after = slip.time[-1] - (SLIP.hold_time + SLIP.load_time)
-    tau = SLIP.relaxation_time
-    limit = SLIP.friction * SLIP.normal_force
-    recoil = _compliance(slip) * limit * (1 - SLIP.kinetic_ratio)
-    onset_speed = _compliance(slip) * limit * (tau / SLIP.load_time) ** (2 / 3) / tau
+    after = slip.time[-1] - (slip_scenario.hold_time + slip_scenario.load_time)
+    tau = slip_scenario.relaxation_time
+    limit = slip_scenario.friction * slip_scenario.normal_force
+    recoil = _compliance(slip) * limit * (1 - slip_scenario.kinetic_ratio)
+    onset_speed = _compliance(slip) * limit * (tau / slip_scenario.load_time) ** (2 / 3) / tau
     relaxed = 1 - np.exp(-after / tau)
-    expected = SLIP.sliding_speed * (after - tau * relaxed) + onset_speed * tau * relaxed + recoil
+    expected = (
+        slip_scenario.sliding_speed * (after - tau * relaxed)
+        + onset_speed * tau * relaxed
+        + recoil
+    )
     assert slip.sliding_displacement[-1] == pytest.approx(expected, rel=0.05)
     # the object's speed is continuous at the onset: no frame-to-frame step drops by half
-    direction = np.array([np.cos(SLIP.direction), np.sin(SLIP.direction)])
+    direction = np.array([np.cos(slip_scenario.direction), np.sin(slip_scenario.direction)])
     steps = np.diff(slip.pattern_offset @ direction)[onset - 5 : onset + 5]
     assert np.all(steps[1:] > 0.5 * steps[:-1])
-    kinetic = SLIP.kinetic_ratio * SLIP.friction * SLIP.normal_force
+    kinetic = slip_scenario.kinetic_ratio * slip_scenario.friction * slip_scenario.normal_force
     assert np.median(slip.tangential_load[-20:]) == pytest.approx(kinetic, rel=0.02)
     # incipient: the annulus has grown by 1 % of a within a few frames of the ramp's start
     assert 60 < slip.incipient_frame < 70
 
 
-def test_frames_and_truth_of_each_kind(slip, hold, steady):
+def test_frames_and_truth_of_each_kind(slip, hold, steady, slip_scenario):
     n = len(slip.time)
     assert slip.static_frames.shape == (n, 16, 16) and slip.piezo_frames.shape == (n, 8, 8)
-    assert n == round((SLIP.hold_time + SLIP.load_time + SLIP.after_time) * 1000)
+    assert n == round(
+        (slip_scenario.hold_time + slip_scenario.load_time + slip_scenario.after_time) * 1000
+    )
     assert hold.gross_frame is None and hold.incipient_frame is None  # constant load
     assert steady.gross_frame is None and steady.incipient_frame is None
     # the PVDF array has forgotten the press: it starts near mid-range and stays there

@@ -5,38 +5,11 @@ import pytest
 
 from taxel.active import (
     SlipDetector,
-    SlipScenario,
     calibrate_slip_detector,
-    simulate_slip,
     slip_sensors,
 )
 from taxel.active._slip import ONSET_TEMPLATE, ONSET_THRESHOLD
 from taxel.active._slip_signals import matched_filter
-
-SLIP = SlipScenario(
-    kind="slip",
-    normal_force=2.0,
-    radius=0.05,
-    friction=0.8,
-    kinetic_ratio=0.8,
-    initial_load=0.0,
-    hold_time=0.06,
-    load_time=0.1,
-    sliding_speed=0.04,
-    relaxation_time=2e-3,
-    direction=0.5,
-    seed=7,
-)
-
-
-@pytest.fixture(scope="module")
-def slip():
-    return simulate_slip(SLIP)
-
-
-@pytest.fixture(scope="module")
-def hold():
-    return simulate_slip(SlipScenario(kind="hold", load_time=0.0, seed=3))
 
 
 def _detector(**settings):
