@@ -281,23 +281,30 @@ def _several_regions(prepared: Prepared) -> Contact:
     taxels, peak, touches = raw_count.tolist(), peaks.tolist(), border.tolist()
     regions = [
         ContactRegion(
-            (cent_r[i], cent_c[i]),
-            in_frame[i],
-            int(taxels[i]),
-            areas[i],
-            forces[i],
-            major[i],
-            minor[i],
-            angle[i],
-            peak[i + 1],
-            touches[i + 1],
-        )  # fmt: skip
+            centroid_index=(cent_r[i], cent_c[i]),
+            centroid_m=in_frame[i],
+            area_taxels=int(taxels[i]),
+            area_m2=areas[i],
+            total_force_n=forces[i],
+            major_axis_m=major[i],
+            minor_axis_m=minor[i],
+            orientation_rad=angle[i],
+            peak=peak[i + 1],
+            touches_border=touches[i + 1],
+        )
         for i in np.argsort(-count[:-1], kind="stable").tolist()
     ]
     return Contact(
-        True, (cent_r[-1], cent_c[-1]), in_frame[-1], areas[-1], forces[-1], major[-1],
-        minor[-1], angle[-1], tuple(regions),
-    )  # fmt: skip
+        present=True,
+        centroid_index=(cent_r[-1], cent_c[-1]),
+        centroid_m=in_frame[-1],
+        area_m2=areas[-1],
+        total_force_n=forces[-1],
+        major_axis_m=major[-1],
+        minor_axis_m=minor[-1],
+        orientation_rad=angle[-1],
+        regions=tuple(regions),
+    )
 
 
 def find_contact(
