@@ -287,7 +287,9 @@ def _check_size(array: np.ndarray, name: str) -> None:
 def _gaussian_kernel(sigma: float) -> np.ndarray:
     """The float32 Gaussian kernel of `gaussian_blur` (cached)."""
     reach = 2 * math.ceil(3 * sigma) + 1  # 3 sigma each way: 99.7 % of the weight
-    return cv2.getGaussianKernel(reach, sigma, cv2.CV_32F)
+    kernel = cv2.getGaussianKernel(reach, sigma, cv2.CV_32F)
+    kernel.setflags(write=False)  # shared by every call
+    return kernel
 
 
 def gaussian_blur(image: np.ndarray, sigma: float) -> np.ndarray:
