@@ -122,3 +122,13 @@ def test_each_feature_takes_the_reference_and_agrees_with_extract(vhdta, unloade
     assert detect_slots(pressed, vhdta, reference=reference) == whole.slots
     assert contact_plane(pressed, vhdta, reference=reference) == whole.plane
     assert texture_measures(pressed, vhdta, reference=reference) == whole.texture
+
+
+def test_edges_of_a_blurred_rim_come_whole_given_the_sensor(vhdta, unloaded):
+    # a washer's rims, blurred by the 1 mm cover (3 taxels at half height): Canny's ridge
+    # lies up to that far inside the contact's outline, which a band of 2 taxels cut up
+    reference = unloaded[0]
+    frame = vhdta.press(make_indenter("washer"), normal_force=10.0, rng=3).raw
+    edges = detect_edges(frame, vhdta, reference=reference)
+    assert edges.n_edges == 2  # the outer rim and the hole's wall
+    assert detect_edges(frame - reference, vhdta.taxel_pitch).n_edges >= 8  # a bare pitch

@@ -7,7 +7,9 @@ set has a 1 ms budget.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any, Unpack
 
 import cv2
@@ -25,9 +27,21 @@ _CANNY_LOW = 60.0
 _CANNY_HIGH = 150.0
 _NOISE_SOBEL = 20.0
 _CANNY_CAP = 350.0
-_OUTLINE_KERNEL = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (5, 5))
+# Edges are kept within this many taxels of the contact's outline, or within the cover's
+# blur when the sensor is known: the mask's outline lies at the low threshold, and a rim
+# blurred by the cover has its steepest gradient (Canny's ridge) up to a blur's width
+# inside it (on vhdta128, 3 taxels: a washer's rims came in 10-11 pieces at 2, 2 at 3).
+_OUTLINE_REACH = 2
 # A segment shorter than this many taxels is a speck, not an edge.
 _MIN_SEGMENT = 4
+
+
+@lru_cache(maxsize=8)
+def _outline_kernel(reach: int) -> np.ndarray:
+    """The disk that makes the band within `reach` taxels of an outline (cached)."""
+    kernel = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * reach + 1, 2 * reach + 1))
+    kernel.setflags(write=False)
+    return kernel
 
 
 @dataclass(frozen=True)
@@ -76,9 +90,10 @@ def edges_core(prepared: Prepared) -> Edges:
     edges: np.ndarray = cv2.Canny(
         image8, min(max(_CANNY_LOW, noise / 2), high / 2), high, L2gradient=True
     )
-    # keep edges within 3 taxels of the contact's outline: an edge is where contact starts or
-    # stops, not a ripple of pressure inside a face (texture is measured separately)
-    outline = cv2.morphologyEx(prepared.mask, cv2.MORPH_GRADIENT, _OUTLINE_KERNEL)
+    # keep edges near the contact's outline (see `_OUTLINE_REACH`): an edge is where contact
+    # starts or stops, not a ripple of pressure inside a face (texture is measured apart)
+    reach = max(_OUTLINE_REACH, math.ceil(prepared.blur / prepared.mean_pitch - 1e-9))
+    outline = cv2.morphologyEx(prepared.mask, cv2.MORPH_GRADIENT, _outline_kernel(reach))
     edges &= outline * np.uint8(255)
     count, labels, stats, _ = cv2.connectedComponentsWithStats(edges, connectivity=8)
     sizes = stats[:, cv2.CC_STAT_AREA]
@@ -113,10 +128,13 @@ def detect_edges(image: Any, sensor_or_pitch: Any, **preparation: Unpack[Prepara
 
     Notes
     -----
-    The smoothed image is scaled so that the baseline maps to 0 and the median contact
-    level to 255, clipped, and passed to OpenCV's Canny (3x3 Sobel, L2 magnitude,
-    hysteresis 60/150). The clipping removes the inner edges that singular pressure peaks
-    (flat-punch rims, texture) would otherwise draw, so the edges outline the contact.
+    The smoothed image is scaled so that the low contact threshold maps to 0 and the lower
+    quartile of the contact's levels to 255, clipped, and passed to OpenCV's Canny (3x3
+    Sobel, L2 magnitude, hysteresis 60/150, raised with the noise up to 175/350). The
+    clipping removes the inner edges that singular pressure peaks (flat-punch rims,
+    texture) would otherwise draw, so the edges outline the contact. Edges are kept within
+    2 taxels of the contact's outline, or within the cover's blur when `sensor_or_pitch` is
+    a sensor (the steepest gradient of a blurred rim lies that far inside the outline).
 
     Examples
     --------
