@@ -575,3 +575,16 @@ def test_a_rule_held_at_its_bound_is_printed(frame_file, tmp_path, capsys):
     assert main([*arguments, "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     assert summary["at_bound"] is False and summary["message"] == "direct solve"
+
+
+def test_a_tv_search_that_misses_its_target_is_printed(frame_file, tmp_path, capsys):
+    arguments = ["reconstruct", str(frame_file), "--sensor", "resistive16", "--method", "tv"]
+    arguments += ["--noise-level", "5e4", "--out", str(tmp_path / "p.npy")]
+    assert main([*arguments, "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["at_bound"] is True
+    assert "found no mu with its target residual" in summary["message"]
+    assert main([*arguments, "--overwrite"]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert "(discrepancy, at its bound: no mu reaches the target, held at " in first
+    assert first.endswith(", target 8e+05)")

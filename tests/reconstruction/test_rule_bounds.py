@@ -77,3 +77,14 @@ def test_the_lcurve_corner_is_not_the_collapsed_end_of_a_longer_range(frame, ord
     result = reconstruct(frame, "resistive16", order=order, regularization="lcurve")
     assert result.regularization < 0.01 * float(result.curve.regularization.max())
     assert result.normal_force == pytest.approx(1.44, rel=0.15)
+
+
+def test_a_tv_search_that_cannot_reach_its_target_says_so(frame):
+    # the residual of any mu stays below tau sigma sqrt(m) = 8e5 Pa: the search gives up
+    held = reconstruct(frame, "resistive16", method="tv", noise_level=5e4)
+    assert held.at_bound is True
+    assert "the discrepancy rule found no mu with its target residual" in held.message
+    assert held.residual_norm < 8e5
+    fitted = reconstruct(frame, "resistive16", method="tv", noise_level=1e3)
+    assert fitted.at_bound is False and "no mu" not in fitted.message
+    assert fitted.residual_norm == pytest.approx(1.6e4, rel=0.03)

@@ -175,7 +175,10 @@ def _bound_text(result) -> str:
     if not np.any(result.at_bound):
         return ""
     _, _, why = result.message.partition("lambda held at the ")
-    return f", at its bound: the {why}" if why else ", at its bound"
+    if why:
+        return f", at its bound: the {why}"
+    _, _, why = result.message.partition("found no mu with its target residual: ")  # tv
+    return f", at its bound: no mu reaches the target, {why}" if why else ", at its bound"
 
 
 def _support_text(second: float | None, rule: str | None) -> str:

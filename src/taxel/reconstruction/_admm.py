@@ -261,7 +261,11 @@ class ADMMSolver:
         return self._residual(frame, state.z[-1])
 
     def _solve_tv(self, frame, target: float, initial_guess: float, callback):
-        """The mu with |A x_mu - b| = target, by secant steps on (log mu, log residual)."""
+        """The mu with |A x_mu - b| = target, by secant steps on (log mu, log residual).
+
+        Returns mu, its state, and whether the search missed: no step came within 2 % of
+        the target and none bracketed it (the target lies beyond every residual tried).
+        """
         history: list[tuple[float, float, ADMMState]] = []
         log_mu, state = np.log(initial_guess), None
         target = max(target, 1e-300)  # no noise at all (an all-zero frame)
@@ -283,7 +287,9 @@ class ADMMSolver:
             else:
                 log_mu += 1.5 if not above else -1.5
         best = min(history, key=lambda h: abs(h[1] - np.log(target)))
-        return float(np.exp(best[0])), best[2]
+        bracketed = min(h[1] for h in history) < np.log(target) <= max(h[1] for h in history)
+        missed = bool(abs(best[1] - np.log(target)) >= 0.02 and not bracketed)
+        return float(np.exp(best[0])), best[2], missed
 
     def solve(
         self,
@@ -305,6 +311,7 @@ class ADMMSolver:
             frame, regularization=regularization, noise_level=noise_level, tau=tau
         )
         noise = linear.noise_level
+        missed = False  # tv: the search for mu did not reach its target
         if self.method == "nonneg":
             parameter = float(linear.regularization)
             state = self.run(frame, parameter, callback=callback)
@@ -319,7 +326,7 @@ class ADMMSolver:
                 guess = 0.05 * max(float(np.abs(frame).max()), 1e-300)
                 if self.spec.quantity != "stress":
                     guess = 0.05 * float(np.abs(linear.pressure).max()) + 1e-300
-                parameter, state = self._solve_tv(frame, target, guess, callback)
+                parameter, state, missed = self._solve_tv(frame, target, guess, callback)
             seminorm = total_variation(state.z[-1])
         pressure, tv = state.z[-1], self.method == "tv"
         converged = state.primal < self.tolerance and state.dual < self.tolerance
@@ -328,13 +335,19 @@ class ADMMSolver:
             if converged
             else f"not converged after {state.iteration} iterations"
         )
+        residual_norm = self._residual(frame, pressure)
+        if missed:
+            message += (
+                f"; the {rule} rule found no mu with its target residual: held at "
+                f"{parameter:.3g}, residual {residual_norm:.3g}, target {target:.3g}"
+            )
         return ReconstructionResult(
             pressure=pressure,
             regularization=parameter,
             rule=rule,
             method=self.method,
             order=self.order,
-            residual_norm=self._residual(frame, pressure),
+            residual_norm=residual_norm,
             solution_norm=seminorm,
             noise_level=noise,
             curve=linear.curve,
@@ -344,5 +357,5 @@ class ADMMSolver:
             residual=max(state.primal, state.dual),
             # nonneg: what the linear solve said of its lambda (a bound), after its own
             message=message + ("" if tv else linear.message.removeprefix("direct solve")),
-            at_bound=False if tv else linear.at_bound,
+            at_bound=missed if tv else linear.at_bound,
         )

@@ -99,8 +99,9 @@ class ReconstructionResult:
         discrepancy principle does when no lambda's residual reaches tau sigma sqrt(m): a
         noise level as large as the readings' own part that the penalty does not smooth
         away; lambda is then the largest of the range, which leaves about 1 % of every mode
-        the penalty acts on. False for a given lambda and for method "tv" (whose search
-        for mu is not on a grid).
+        the penalty acts on. False for a given lambda. For method "tv", whose search for
+        mu is not on a grid: True when the search ended without reaching its target
+        residual or bracketing it (the message gives the mu, residual and target).
     """
 
     pressure: np.ndarray = field(repr=False)
