@@ -649,15 +649,20 @@ def test_pressure_maps_keep_their_speckle():
     assert not prepare(pressure, sensor).present
 
 
+def _random_blobs(rng, smallest_sigma: float, highest_level: float) -> np.ndarray:
+    """A random 8-64 taxel square 0/1 image of blobs: smoothed noise over a random level."""
+    size = int(rng.integers(8, 64))
+    noise = ndimage.gaussian_filter(rng.random((size, size)), rng.uniform(smallest_sigma, 2.5))
+    return (noise > rng.uniform(0.45, highest_level)).astype(np.uint8)
+
+
 @pytest.mark.parametrize("seed", range(4))
 def test_outlines_of_one_region_in_the_order_findcontours_lists_them(seed):
     # prepare picks one region's outlines from those of all regions instead of tracing it
     # again; the features then see them in the order cv2.findContours(RETR_LIST) gives
     rng = np.random.default_rng(seed)
     for _ in range(100):
-        size = int(rng.integers(8, 64))
-        noise = ndimage.gaussian_filter(rng.random((size, size)), rng.uniform(0.6, 2.5))
-        image = (noise > rng.uniform(0.45, 0.55)).astype(np.uint8)
+        image = _random_blobs(rng, 0.6, 0.55)
         count, labels = cv2.connectedComponents(image, connectivity=8)
         if count < 2:
             continue
@@ -675,9 +680,8 @@ def test_the_peaks_region_is_the_candidates_but_the_others(seed):
     # are specks (outlines under 4 points), cleared point by point
     rng = np.random.default_rng(seed)
     for _ in range(100):
-        size = int(rng.integers(8, 64))
-        noise = ndimage.gaussian_filter(rng.random((size, size)), rng.uniform(0.3, 2.5))
-        image = (noise > rng.uniform(0.45, 0.6)).astype(np.uint8)
+        image = _random_blobs(rng, 0.3, 0.6)
+        size = image.shape[0]
         image[rng.random((size, size)) < 0.02] = 1  # specks
         count, labels = cv2.connectedComponents(image, connectivity=8)
         if count < 3:
