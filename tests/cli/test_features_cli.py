@@ -369,3 +369,34 @@ def test_reference_errors_are_one_line(tmp_path, capsys, content, message):
     assert main([*args, "--reference", str(tmp_path / "reference.npy")]) == 2
     err = capsys.readouterr().err
     assert message in err and len(err.strip().splitlines()) == 1
+
+
+def test_sensors_whose_frames_are_no_plain_images(tmp_path, capsys):
+    from taxel.mechanics import make_indenter
+    from taxel.sensor import make_sensor
+
+    sphere = make_indenter("sphere")
+    # a PVDF frame falls where it is pressed: the contact is the pressed taxel (before,
+    # the 61 taxels left unpressed)
+    piezo = make_sensor("piezo8x8")
+    path = tmp_path / "piezo.npy"
+    np.save(path, piezo.press(sphere, normal_force=1.0, position=(3e-3, -2e-3), rng=1).raw)
+    assert main(["features", str(path), "--sensor", "piezo8x8", "--json"]) == 0
+    contact = json.loads(capsys.readouterr().out)["contact"]
+    assert contact["centroid_m"] == pytest.approx([3.75e-3, -1.25e-3], abs=0.1e-3)
+    assert contact["area_m2"] == pytest.approx(2.5e-3**2)
+    # a photoelastic frame past its first fringe is read with a warning; below it, none
+    photoelastic = make_sensor("photoelastic64")
+    for force, warned in ((0.5, False), (2.0, True)):
+        frame = photoelastic.press(sphere, normal_force=force, position=(3e-3, -2e-3))
+        np.save(path := tmp_path / f"fringes{force}.npy", frame.raw)
+        assert main(["features", str(path), "--sensor", "photoelastic64", "--json"]) == 0
+        captured = capsys.readouterr()
+        assert json.loads(captured.out)["contact"]["present"]
+        assert ("reaches the first fringe of the photoelastic64 layer" in captured.err) is warned
+    # microbend fibres are no image
+    np.save(path := tmp_path / "fibres.npy", np.zeros(32, np.int64))
+    assert main(["features", str(path), "--sensor", "microbend16"]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1
+    assert "--sensor microbend16 reads 32 fibres, not an image of its 16 x 16 crossings" in error

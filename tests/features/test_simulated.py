@@ -8,7 +8,7 @@ import pytest
 from taxel.features import extract, prepare, sensor_noise
 from taxel.frames import make_pose
 from taxel.mechanics import make_indenter
-from taxel.sensor import make_sensor
+from taxel.sensor import calibrate, make_sensor
 
 
 @pytest.fixture(scope="module")
@@ -148,9 +148,25 @@ def test_a_4x4_frame_takes_the_sensors_noise():
     rest = np.zeros(sensor.load_grid.shape)
     for seed in range(5):
         assert not extract(sensor.frame_from_pressure(rest, rng=seed).raw, sensor).contact.present
-    # a calibrated image (Pa) keeps the estimate: the sensor's noise is in raw codes
-    assert not extract(raw * 10.0, sensor, calibrated=True).contact.present
-    assert extract(raw * 10.0, sensor, calibrated=True, noise=300.0).contact.present
+    # a calibrated image takes the same noise in pascals, through the sensor's gain: the
+    # rest frames' spread once calibrated (the 16 interior taxels' estimate read one taxel
+    # at 18 kPa as noise of 5.9 kPa, and found no contact)
+    calibration = calibrate(sensor, rng=0)
+    rest_pa = [calibration.felt_pressure(sensor.frame_from_pressure(rest, rng=seed).raw)
+               for seed in range(40)]  # fmt: skip
+    spread = float(np.std(np.array(rest_pa) - np.mean(rest_pa, axis=0)))
+    noise_pa = prepare(rest_pa[0], sensor, calibrated=True).raw_noise
+    assert noise_pa == pytest.approx(sensor_noise(sensor) / sensor.flat_plate_gain)
+    assert noise_pa == pytest.approx(spread, rel=0.15)
+    pressed = sensor.press(
+        make_indenter("sphere"), normal_force=0.5, position=(3e-3, -2e-3), rng=1
+    )
+    felt = calibration.felt_pressure(pressed.raw)
+    features = extract(felt, sensor, calibrated=True)
+    assert features.contact.present
+    assert np.unravel_index(np.argmax(felt), felt.shape) == (1, 2)
+    assert features.contact.centroid_m == pytest.approx((2.5e-3, -2.5e-3), abs=1.5e-3)
+    assert not any(extract(frame, sensor, calibrated=True).contact.present for frame in rest_pa)
 
 
 def test_noise_sensor_is_asked_for_on_raw_frames_of_a_sensor():
@@ -170,3 +186,27 @@ def test_noise_sensor_is_asked_for_on_raw_frames_of_a_sensor():
         extract(raw, sensor, noise="camera")
     with pytest.raises(TypeError, match="`noise='sensor'` needs a sensor that reads frames"):
         extract(raw, 2e-3, noise="sensor")
+
+
+def test_a_pvdf_frame_falls_with_pressure_and_is_turned_over():
+    # piezo8x8 rests at code ~2048 and a press swings its pressed taxels down (to 0 at
+    # 1 N): read as it is, the unpressed taxels were the contact (61 of 64 taxels)
+    sensor = make_sensor("piezo8x8")
+    assert sensor.reading_falls_with_pressure and sensor.flat_plate_gain < 0
+    for force in (0.05, 1.0):
+        frame = sensor.press(
+            make_indenter("sphere"), normal_force=force, position=(3e-3, -2e-3), rng=1
+        )
+        features = extract(frame.raw, sensor)
+        pressed = np.unravel_index(np.argmin(frame.raw), frame.raw.shape)
+        assert features.contact.present and features.contact.area_m2 <= 4 * 2.5e-3**2
+        assert np.round(features.contact.centroid_index) == pytest.approx(pressed)
+        assert features.contact.centroid_m == pytest.approx((3e-3, -2e-3), abs=1.25e-3)
+    # a baseline is given in the frame's own units, and turned over with it
+    assert prepare(frame.raw, sensor, baseline=2048).baseline == -2048
+    # a calibrated image (pressure) is never turned over
+    pressure = np.zeros(sensor.shape)
+    pressure[2, 5] = 1e4
+    assert extract(pressure, sensor, calibrated=True).contact.centroid_index == pytest.approx(
+        (2.0, 5.0), abs=0.01
+    )

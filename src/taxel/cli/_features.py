@@ -220,6 +220,28 @@ def _check_noise(arguments: argparse.Namespace) -> None:
         )
 
 
+def _check_images(arguments: argparse.Namespace, sensor: Any) -> None:
+    """Refuse a --sensor whose raw frames are not images (microbend16 reads fibres)."""
+    if arguments.sensor is None or arguments.calibrated:
+        return
+    rows, cols = sensor.shape
+    signal = np.shape(sensor.mean_reading(np.zeros((rows, cols))))
+    if len(signal) != 2:
+        raise ValueError(
+            f"--sensor {arguments.sensor} reads {signal[0]} fibres, not an image of its "
+            f"{rows} x {cols} crossings: the features need an image; turn the fibres into a "
+            "pressure map first (taxel.transducers.separable_pressure) and give it with "
+            "--pitch and --calibrated"
+        )
+
+
+def _past_the_turn(arguments: argparse.Namespace, sensor: Any, frame: np.ndarray) -> bool:
+    """Whether a raw frame of a --sensor has passed the reading where it turns back."""
+    if arguments.calibrated or getattr(sensor, "reaches_turn", None) is None:
+        return False
+    return bool(sensor.reaches_turn(frame))
+
+
 def _write_figure(path: Path, figure: Any) -> None:
     """Save the --figure PNG beside `path` and rename it: a failed write keeps an old one."""
     from taxel.io import write_files
@@ -250,6 +272,7 @@ def _run(arguments: argparse.Namespace) -> int:
 
     pitch = _pitch(arguments)
     _check_noise(arguments)
+    _check_images(arguments, pitch)
     if arguments.figure:
         from taxel.io import check_new_file
 
@@ -295,6 +318,13 @@ def _run(arguments: argparse.Namespace) -> int:
         "defects": arguments.defects,
         "reference": reference,
     }
+    if _past_the_turn(arguments, pitch, given):
+        sys.stderr.write(
+            f"taxel features: warning: {arguments.file} reaches the first fringe of the "
+            f"{arguments.sensor} layer (a reading of {pitch.reading_turns_at:.4g}); past it "
+            "the reading turns back as the load grows, so the contact found is where the "
+            "stress is about half a fringe, not where it is highest: press lighter\n"
+        )
     features = extract(given, pitch, pose=pose, **preparation)
     if arguments.figure:  # first: a figure that cannot be written stops before any output
         from taxel.viz import plot_features

@@ -46,6 +46,7 @@ from taxel.features._sensor import (
     cover_depth,
     hexagonal_resampled,
     pitch_pair,
+    raw_falls_with_pressure,
 )
 
 __all__ = ["Preparation", "Prepared", "prepare"]
@@ -342,8 +343,11 @@ def prepare(
     ----------
     image : array_like, shape (rows, cols)
         Raw frame (any integer or float dtype), calibrated reading or pressure map [Pa];
-        larger values mean more pressure. Values beyond +-1e15 are refused (the features
-        compute in float32).
+        larger values mean more pressure, except in the raw frame of a sensor whose
+        reading falls with pressure (a PVDF array's charge amplifiers swing down under
+        compression: ``reading_falls_with_pressure``), which is turned over (negated)
+        first, so that its `baseline` and the contact's peak are then in negated units.
+        Values beyond +-1e15 are refused (the features compute in float32).
     sensor_or_pitch : float, pair or object with ``taxel_pitch``
         Taxel pitch [m], or a sensor description (a `taxel.sensor.TactileSensor`), whose
         cover depth then decides `defects`; a frame of a hexagonal array (of a sensor or an
@@ -363,10 +367,11 @@ def prepare(
     noise : float or "sensor", optional
         The noise standard deviation of one taxel [image units], when the sensor's is
         known. By default estimated from the image, which cannot tell a texture as fine
-        as the taxels from noise when it covers the whole array; a raw frame with fewer
+        as the taxels from noise when it covers the whole array; an image with fewer
         than 16 interior taxels (a 4 x 4 array) cannot give it at all, and takes the
         sensor's own noise when `sensor_or_pitch` is a sensor description that reads
-        frames (`sensor_noise`). "sensor" takes the sensor's noise on any raw frame; it
+        frames (`sensor_noise`; in pascals through its `flat_plate_gain` when the image
+        is calibrated). "sensor" takes the sensor's noise on any raw frame; it
         is only as right as the sensor's model: frames noisier than the model then show
         contacts in their noise.
     reference : array_like, shape (rows, cols), optional
@@ -389,6 +394,7 @@ def prepare(
     """
     given = _as_image(image)
     check_image_shape(given.shape, sensor_or_pitch)
+    calibrated = check_flag("calibrated", calibrated)
     if reference is not None:
         tare = _as_image(reference, "reference")
         if tare.shape != given.shape:
@@ -396,6 +402,10 @@ def prepare(
                 f"`reference` must have the image's shape {given.shape}, got {tare.shape}"
             )
         given = cv2.subtract(given, tare)
+    # a raw frame that falls with pressure (a PVDF array's) is turned over
+    inverted = not calibrated and raw_falls_with_pressure(sensor_or_pitch)
+    if inverted:
+        given = np.negative(given)
     # integer inputs (a raw frame, as it was given) leave an exact quarter-step residual;
     # two of 16 bits differ in 17, which float32 still holds exactly
     dtypes = [np.asarray(array).dtype for array in (image, reference) if array is not None]
@@ -404,7 +414,6 @@ def prepare(
     whole = integers and max(dtype.itemsize for dtype in dtypes) * 8 <= _EXACT_BITS
     pitch = pitch_pair(sensor_or_pitch)
     smoothing = check_range("smoothing", smoothing, 0.0, 20.0)
-    calibrated = check_flag("calibrated", calibrated)
     step = 2 if values.shape[0] > 64 and values.shape[1] > 64 else 1
     residual = laplacian_residual(values, step, whole=whole)
     interior = (values.shape[0] - 2) * (values.shape[1] - 2)
@@ -419,6 +428,8 @@ def prepare(
     noise = raw_noise * smoothing_gain(smoothing)
     lowest, peak, _, peak_at = cv2.minMaxLoc(smooth)
     level = lowest if baseline is None else check_finite("baseline", baseline)
+    if inverted and baseline is not None:
+        level = -level
     if abs(level) > _LARGEST_VALUE:
         raise ValueError(f"`baseline` must lie within +-{_LARGEST_VALUE:.0e}, got {level:.3g}")
     contrast = peak - level

@@ -115,14 +115,19 @@ def taxel_noise(
 
     `quantum`: the step the residual's values are multiples of, or 0 (`noise_from_residual`).
 
-    By default (None) estimated from the image's Laplacian residual, unless the image is a
-    raw frame of a sensor that reads frames and has too few interior taxels for the
-    estimate (`_SMALL_IMAGE`): then the sensor's own (`sensor_noise`).
+    By default (None) estimated from the image's Laplacian residual, unless the image
+    has too few interior taxels for the estimate (`_SMALL_IMAGE`) and comes from a sensor
+    that reads frames: then the sensor's own (`sensor_noise`), in pascals for a
+    calibrated image (through the sensor's `flat_plate_gain`).
     """
     if noise is None:
-        small = interior < _SMALL_IMAGE and not calibrated
+        small = interior < _SMALL_IMAGE
         if small and callable(getattr(sensor_or_pitch, "frame_from_pressure", None)):
-            return sensor_noise(sensor_or_pitch)
+            if not calibrated:
+                return sensor_noise(sensor_or_pitch)
+            gain = abs(float(getattr(sensor_or_pitch, "flat_plate_gain", 0.0)))
+            if gain > 0:
+                return sensor_noise(sensor_or_pitch) / gain
         return noise_sigma(residual, quantum)
     if isinstance(noise, str):
         if noise != "sensor":

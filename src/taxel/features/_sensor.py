@@ -28,6 +28,7 @@ __all__ = [
     "cover_depth",
     "hexagonal_resampled",
     "pitch_pair",
+    "raw_falls_with_pressure",
     "sensor_coordinates",
     "sensor_noise",
 ]
@@ -44,6 +45,15 @@ def cover_depth(sensor_or_pitch: Any) -> float | None:
     """Depth of the sensing plane under the surface [m], when a sensor description gives it."""
     depth = getattr(getattr(sensor_or_pitch, "cover", None), "depth", None)
     return float(depth) if isinstance(depth, int | float) and depth > 0 else None
+
+
+def raw_falls_with_pressure(sensor_or_pitch: Any) -> bool:
+    """Whether a sensor's raw reading falls as the pressure rises (a PVDF array's does).
+
+    Read off the sensor (``reading_falls_with_pressure`` of a `taxel.sensor.TactileSensor`);
+    False for a bare pitch.
+    """
+    return getattr(sensor_or_pitch, "reading_falls_with_pressure", False) is True
 
 
 def cover_blur(sensor_or_pitch: Any) -> float:

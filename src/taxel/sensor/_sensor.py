@@ -20,6 +20,7 @@ from taxel.sensor._cover import Cover
 from taxel.sensor._fields import TaxelFields, taxel_fields
 from taxel.sensor._geometry import ArrayGeometry, LoadGrid
 from taxel.sensor._readout import Readout, ReadoutChain
+from taxel.sensor._response_direction import flat_plate_gain, reaches_turn, reading_turns_at
 from taxel.transducers import (
     FtirTransducer,
     PhotoelasticTransducer,
@@ -321,6 +322,25 @@ class TactileSensor:
         low, high = float(values.min()), float(values.max())
         margin = 0.05 * (high - low) if high > low else 1.0
         return low - margin, high + margin
+
+    @cached_property
+    def flat_plate_gain(self) -> float:
+        """Mean change of the raw reading per pascal near rest (`response_direction`)."""
+        return flat_plate_gain(self)
+
+    @property
+    def reading_falls_with_pressure(self) -> bool:
+        """Whether the raw reading falls as the pressure rises (a PVDF array's does)."""
+        return self.flat_plate_gain < 0
+
+    @cached_property
+    def reading_turns_at(self) -> float | None:
+        """The mean raw reading past which the reading turns back (`response_direction`)."""
+        return reading_turns_at(self)
+
+    def reaches_turn(self, raw: Any) -> bool:
+        """Whether a raw frame reaches `reading_turns_at` (`response_direction`)."""
+        return reaches_turn(self, self._taxel_frames("raw", raw))
 
     def _ideal_signal(self, pressure: np.ndarray) -> np.ndarray:
         fields = self.fields(pressure)
