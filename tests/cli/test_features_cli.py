@@ -400,3 +400,21 @@ def test_sensors_whose_frames_are_no_plain_images(tmp_path, capsys):
     error = capsys.readouterr().err
     assert error.count("\n") == 1
     assert "--sensor microbend16 reads 32 fibres, not an image of its 16 x 16 crossings" in error
+
+
+def test_table_names_its_axes_and_shows_directions_alike(tmp_path, capsys):
+    # a horizontal bar: the line's angle and the contact's orientation are one direction,
+    # shown in (-90, 90] (before: "line angle 180.0" beside "orientation -0.1")
+    frame = np.full((32, 32), 10.0)
+    frame[14:18, 2:30] = 200.0
+    path = tmp_path / "bar.npy"
+    np.save(path, frame)
+    assert main(["features", str(path), "--pitch", "1e-3"]) == 0
+    rows = dict(
+        line.split("  ", 1) for line in capsys.readouterr().out.splitlines() if "  " in line
+    )
+    rows = {name.strip(): value.strip() for name, value in rows.items()}
+    assert rows["centroid (x, y) [mm]"] == "(0.000, 0.000)"
+    assert rows["centroid (row, col) [taxels]"] == "(15.50, 15.50)"
+    assert abs(float(rows["orientation [deg]"])) < 1.0
+    assert abs(float(rows["line angle [deg]"])) < 1.0

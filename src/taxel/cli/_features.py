@@ -126,7 +126,15 @@ def _format(value: Any, scale: float = 1.0, digits: int = 3) -> str:
         return "(" + ", ".join(_format(v, scale, digits) for v in value) + ")"
     if isinstance(value, float) and not math.isfinite(value):
         return "-"
-    return f"{value * scale:.{digits}f}"
+    text = f"{value * scale:.{digits}f}"
+    return text.lstrip("-") if float(text) == 0 else text  # never "-0.000"
+
+
+def _direction(angle_rad: float | None) -> str:
+    """An axis's direction [deg] in (-90, 90], one decimal: a line at 179.96 deg shows 0.0."""
+    if angle_rad is None or not math.isfinite(angle_rad):
+        return "-"
+    return _format(-((-math.degrees(angle_rad) + 90.0) % 180.0 - 90.0), digits=1)
 
 
 def _table(data: dict[str, Any]) -> str:
@@ -136,17 +144,17 @@ def _table(data: dict[str, Any]) -> str:
         ("contact type", f"{data['contact_type']} ({data['contact_rule']}, "
          f"confidence {data['contact_confidence']:.2f})"),
         ("regions", str(len(data["regions"]))),
-        ("centroid [mm]", _format(contact["centroid_m"], 1e3)),
-        ("centroid [taxels]", _format(contact["centroid_index"], 1.0, 2)),
+        ("centroid (x, y) [mm]", _format(contact["centroid_m"], 1e3)),
+        ("centroid (row, col) [taxels]", _format(contact["centroid_index"], 1.0, 2)),
         ("area [mm^2]", _format(contact["area_m2"], 1e6)),
         ("total force [N]", _format(contact["total_force_n"])),
-        ("orientation [deg]", _format(contact["orientation_rad"], 180 / math.pi, 1)),
-        ("centroid, base [mm]", _format(contact["centroid_base_m"], 1e3)),
+        ("orientation [deg]", _direction(contact["orientation_rad"])),
+        ("centroid (x, y, z), base [mm]", _format(contact["centroid_base_m"], 1e3)),
         ("edges", str(data["n_edges"])),
         ("edge / corner score", f"{data['edge_score']:.2f} / {data['corner_score']:.2f}"),
-        ("line angle [deg]", _format(line["angle_rad"], 180 / math.pi, 1)),
+        ("line angle [deg]", _direction(line["angle_rad"])),
         ("line rms [mm]", _format(line["rms_m"], 1e3)),
-        ("circle centre [mm]", _format(circle["center_m"], 1e3)),
+        ("circle centre (x, y) [mm]", _format(circle["center_m"], 1e3)),
         ("circle radius [mm]", _format(circle["radius_m"], 1e3)),
         ("circle rms [mm]", _format(circle["rms_m"], 1e3)),
         ("holes", f"{data['holes']['count']} (seed's diameter test: "
@@ -161,7 +169,7 @@ def _table(data: dict[str, Any]) -> str:
     for slot in data["slots"]["items"]:
         rows.append(
             ("  slot", f"centre {_format(slot['center_m'], 1e3)} mm, "
-             f"direction {_format(slot['angle_rad'], 180 / math.pi, 1)} deg, "
+             f"direction {_direction(slot['angle_rad'])} deg, "
              f"width {_format(slot['width_m'], 1e3)} mm, "
              f"length {_format(slot['length_m'], 1e3)} mm"
              + (" (runs off the array)" if slot["truncated"] else ""))
