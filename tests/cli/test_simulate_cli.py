@@ -205,3 +205,20 @@ def test_a_frame_at_zero_force_is_the_sensor_at_rest(tmp_path, capsys):
     contact = json.loads(capsys.readouterr().out)["contact"]
     assert contact["present"]  # centred where the sphere pressed, to a tenth of a millimetre
     assert np.all(np.abs(contact["centroid_m"]) < 1e-4)
+
+
+@pytest.mark.parametrize(
+    ("sensor", "extra", "said"),
+    [
+        ("reflective8x8", ["--x", "0.003", "--y", "-0.002"], "pressing with 2 N closes "),
+        ("reflective8x8", ["--force", "5"], "pressing with 5 N closes reflective8x8's 1.5 mm"),
+        ("capacitive4x4", ["--force", "500"], "pressing with 500 N squeezes capacitive4x4's"),
+    ],
+)
+def test_a_force_past_the_transducers_end_names_the_flag(tmp_path, capsys, sensor, extra, said):
+    argv = ["simulate", "--sensor", sensor, "--object", "sphere", "--force", "2", *extra]
+    assert main([*argv, "--out", str(tmp_path / "f.npy")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"taxel simulate: error: {said}")
+    assert err.endswith(": --force must be smaller\n") and err.count("\n") == 1
+    assert list(tmp_path.iterdir()) == []

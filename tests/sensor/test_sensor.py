@@ -216,3 +216,33 @@ def test_bad_press_arguments_name_the_parameter(changes, error, match):
     arguments = {"indenter": make_indenter("sphere"), "normal_force": 1.0} | changes
     with pytest.raises(error, match=match):
         make_sensor("resistive16").press(**arguments)
+
+
+@pytest.mark.parametrize(
+    ("name", "load", "match"),
+    [
+        (
+            "reflective8x8",
+            {"normal_force": 2.0, "position": (0.003, -0.002)},
+            r"^pressing with 2 N closes reflective8x8's 1\.5 mm gap \(the cover would move "
+            r"1\.53 mm\): `normal_force` must be smaller$",
+        ),
+        (
+            "reflective8x8",
+            {"indentation": 3e-3},
+            r"^pressing with an indentation of 3 mm closes reflective8x8's 1\.5 mm gap .*: "
+            r"`indentation` must be smaller$",
+        ),
+        (
+            "capacitive4x4",
+            {"normal_force": 500.0},
+            r"^pressing with 500 N squeezes capacitive4x4's 0\.1 mm dielectric flat \(it would "
+            r"be compressed by 464\.9 % of its thickness, and 100 % closes the gap\): "
+            r"`normal_force` must be smaller$",
+        ),
+    ],
+)
+def test_a_press_past_the_transducers_end_names_the_load(name, load, match):
+    # the transducers refused their own input (`displacement` < unloaded_gap, `strain` > -1)
+    with pytest.raises(ValueError, match=match):
+        make_sensor(name).press(make_indenter("sphere"), **load)

@@ -174,13 +174,16 @@ def _run(arguments: argparse.Namespace) -> int:
             f"{width:g} x {height:g} mm load grid ({cell:g} mm cells): move it onto the "
             "sensor, or refine the grid with --oversampling"
         )
-    frame = sensor.press(
-        indenter,
-        normal_force=arguments.force,
-        position=(x, y),
-        angle=arguments.angle,
-        rng=arguments.seed,
-    )
+    try:
+        frame = sensor.press(
+            indenter,
+            normal_force=arguments.force,
+            position=(x, y),
+            angle=arguments.angle,
+            rng=arguments.seed,
+        )
+    except ValueError as error:  # the library names its parameter; the user gave the flag
+        raise ValueError(str(error).replace("`normal_force`", "--force")) from None
     contact = frame.contact
     if contact is None:  # press always solves a contact; this keeps the types honest
         raise CommandLineError("the press returned no contact")

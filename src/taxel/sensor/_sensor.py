@@ -19,6 +19,7 @@ from taxel.mechanics import (
 from taxel.sensor._cover import Cover
 from taxel.sensor._fields import TaxelFields, taxel_fields
 from taxel.sensor._geometry import ArrayGeometry, LoadGrid
+from taxel.sensor._limits import load_limit
 from taxel.sensor._readout import Readout, ReadoutChain
 from taxel.sensor._response_direction import flat_plate_gain, reaches_turn, reading_turns_at
 from taxel.transducers import (
@@ -201,6 +202,13 @@ class TactileSensor:
         Returns
         -------
         SensorFrame
+
+        Raises
+        ------
+        ValueError
+            Also when the press would take the transducer past its physical end (close a
+            reflective sensor's gap, squeeze a capacitive dielectric flat); the message
+            says so and names `normal_force` (or `indentation`) and its value.
         """
         check_instance("indenter", indenter, Indenter)
         as_rng("rng", rng)  # before the solve, not after it
@@ -216,9 +224,21 @@ class TactileSensor:
             thickness=self.cover.thickness,
             initial=initial,
         )
-        return self.frame_from_pressure(
-            contact.pressure, displacement=contact.displacement, rng=rng, contact=contact
-        )
+        try:
+            return self.frame_from_pressure(
+                contact.pressure, displacement=contact.displacement, rng=rng, contact=contact
+            )
+        except ValueError:  # past the transducer's end? say so of the load, not its input
+            fields = self.fields(contact.pressure, displacement=contact.displacement)
+            quantity = self.sensed_quantity(contact.pressure, fields)
+            if normal_force is not None:
+                load = ("normal_force", f"{normal_force:g} N")
+            else:
+                load = ("indentation", f"an indentation of {float(indentation or 0) * 1e3:g} mm")
+            message = load_limit(self, quantity, *load)
+            if message is None:
+                raise
+            raise ValueError(message) from None
 
     def fields(self, pressure: Any, *, displacement: np.ndarray | None = None) -> TaxelFields:
         """Mechanical fields at each taxel for a surface pressure on the load grid [Pa]."""
