@@ -67,7 +67,7 @@ def test_the_can_rim_crosses_the_sensor_by_default(tmp_path):
         (["--sensor", "resistive16", "--object", "can", "--x", "0"], "is over no cell of the"),
         (["--sensor", "resistive16", "--object", "pen", "--x", "10"], "lowest point off the 32"),
         (["--sensor", "resistive16", "--object", "sphere", "--y", "-0.02"], "2.64 mm higher up"),
-        (["--sensor", "capacitive4x4", "--object", "punch"], "refine the grid with --overs"),
+        (["--sensor", "capacitive4x4", "--object", "punch"], "give --oversampling 2 or more"),
         (["--sensor", "resistive16", "--object", "pen", "--angle", "nan"], "must be finite"),
     ],
 )
@@ -222,3 +222,23 @@ def test_a_force_past_the_transducers_end_names_the_flag(tmp_path, capsys, senso
     assert err.startswith(f"taxel simulate: error: {said}")
     assert err.endswith(": --force must be smaller\n") and err.count("\n") == 1
     assert list(tmp_path.iterdir()) == []
+
+
+def test_an_object_between_the_cell_centres_asks_for_oversampling(tmp_path, capsys):
+    # the 6 mm punch at the centre of capacitive4x4 is over the sensor, but the nearest
+    # centres of its 5 mm cells are 3.5 mm away: it touches none; 2 x 2 cells per taxel do
+    argv = ["simulate", "--sensor", "capacitive4x4", "--object", "punch", "--force", "1"]
+    assert main([*argv, "--out", str(tmp_path / "f.npy")]) == 2
+    assert capsys.readouterr().err == (
+        "taxel simulate: error: the punch at x = 0 m, y = 0 m falls between the centres of "
+        "the 5 mm cells of the 20 x 20 mm load grid, on which the contact is solved: what it "
+        "presses with is narrower than a cell; give --oversampling 2 or more to solve it on "
+        "finer cells\n"
+    )
+    assert main([*argv, "--oversampling", "2", "--out", str(tmp_path / "f.npy")]) == 0
+    # off the sensor, no grid finds it
+    assert main([*argv, "--x", "0.5", "--out", str(tmp_path / "f.npy"), "--overwrite"]) == 2
+    assert capsys.readouterr().err.endswith(
+        "is over no cell of the 20 x 20 mm load grid (5 mm cells), even at --oversampling 16: "
+        "move it onto the sensor\n"
+    )

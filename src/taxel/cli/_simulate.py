@@ -37,6 +37,8 @@ from taxel.io import check_new_file, write_files
 
 __all__ = ["register"]
 
+_LARGEST_OVERSAMPLING = 16  # --oversampling's bound
+
 
 def _default_position(indenter: Any) -> tuple[float, float]:
     # a can's origin is the centre of its rim: put the centre one rim radius off the
@@ -125,6 +127,37 @@ def _check_lowest_point_on_sensor(
         )
 
 
+def _over_no_cell(
+    indenter: Any, sensor: Any, position: tuple[float, float], arguments: argparse.Namespace
+) -> CommandLineError:
+    """The error for an object whose surface lies over no cell centre of the load grid.
+
+    An object over the sensor but smaller than its cells (a punch narrower than the gaps
+    between cell centres) falls between them: a finer grid, as --oversampling asks, finds
+    it, and the error names the least one that does. One off the sensor must be moved.
+    """
+    width, height = (size * 1e3 for size in sensor.geometry.extent)
+    cell = sensor.load_grid.spacing[1] * 1e3
+    x, y = position
+    where = f"the {arguments.object} at x = {x:g} m, y = {y:g} m"
+    grid = f"the {width:g} x {height:g} mm load grid"
+    base = sensor.oversampling if arguments.oversampling is None else arguments.oversampling
+    for factor in range(base + 1, _LARGEST_OVERSAMPLING + 1):
+        finer = sensor.geometry.load_grid(factor)
+        cell_x, cell_y = finer.coordinates()
+        heights = indenter.heights(cell_x, cell_y, position=position, angle=arguments.angle)
+        if np.any(np.isfinite(heights)):
+            return CommandLineError(
+                f"{where} falls between the centres of the {cell:.3g} mm cells of {grid}, "
+                "on which the contact is solved: what it presses with is narrower than a "
+                f"cell; give --oversampling {factor} or more to solve it on finer cells"
+            )
+    return CommandLineError(
+        f"{where} is over no cell of {grid} ({cell:.3g} mm cells), even at --oversampling "
+        f"{_LARGEST_OVERSAMPLING}: move it onto the sensor"
+    )
+
+
 def _warn_if_saturated(frame: Any, sensor: Any) -> None:
     """Warn (stderr) when the sensing plane is pressed beyond the sensor's full scale.
 
@@ -167,13 +200,7 @@ def _run(arguments: argparse.Namespace) -> int:
     heights = indenter.heights(cell_x, cell_y, position=(x, y), angle=arguments.angle)
     _check_lowest_point_on_sensor(indenter, heights, sensor, (x, y), arguments)
     if not np.any(np.isfinite(heights)):
-        width, height = (size * 1e3 for size in sensor.geometry.extent)
-        cell = sensor.load_grid.spacing[1] * 1e3
-        raise CommandLineError(
-            f"the {arguments.object} at x = {x:g} m, y = {y:g} m is over no cell of the "
-            f"{width:g} x {height:g} mm load grid ({cell:g} mm cells): move it onto the "
-            "sensor, or refine the grid with --oversampling"
-        )
+        raise _over_no_cell(indenter, sensor, (x, y), arguments)
     try:
         frame = sensor.press(
             indenter,
@@ -271,7 +298,7 @@ def register(commands: Any) -> None:
     )
     parser.add_argument(
         "--oversampling",
-        type=integer_in(1, 16),
+        type=integer_in(1, _LARGEST_OVERSAMPLING),
         metavar="K",
         help="solve the contact on K x K cells per taxel (the preset's, usually 1); "
         "finer grids resolve small objects such as the can's 1 mm lip",
