@@ -304,6 +304,10 @@ def test_a_wrong_or_deeply_nested_file_names_its_flag(capsys, tmp_path, procedur
             ["edge-radius", "--radius-mm", "3", "--sensor", "harmon10x20"],
             "error: --sensor harmon10x20 is too small for an edge cross-section: 10 x 20 taxels",
         ),
+        (  # refused by the table's build (made at these --forces), named as the flag too
+            ["edge-radius", "--radius-mm", "3.2", "--sensor", "piezo8x8", "--forces", "2", "5"],
+            "error: --sensor piezo8x8 is too small for an edge cross-section: 8 x 8 taxels",
+        ),
         (
             ["locate-corner", "--guess-error-mm", "900"],
             "error: --guess-error-mm 900: probing from a guess this far off the corner missed "
@@ -401,9 +405,9 @@ def test_a_build_that_fails_leaves_one_line(capsys, tmp_path):
     args = ["active", "edge-radius", "--radius-mm", "3", "--sensor", "capacitive4x4"]
     assert main([*args, "--forces", "2", "4", "--table", str(table)]) == 2
     assert capsys.readouterr().err == (
-        "taxel active edge-radius: error: `sensor` is too small for an edge cross-section: "
-        "4 x 4 taxels at 5 x 5 mm leave 0.0 mm clear of the border across the edge, and the "
-        "section needs 14 mm\n"
+        "taxel active edge-radius: error: --sensor capacitive4x4 is too small for an edge "
+        "cross-section: 4 x 4 taxels at 5 x 5 mm leave 0.0 mm clear of the border across the "
+        "edge, and the section needs 14 mm\n"
     )
     assert not table.exists()
 

@@ -184,16 +184,30 @@ def _check_edge_position(arguments: argparse.Namespace, reach: float) -> None:
 
 
 @contextlib.contextmanager
-def _edge_errors(arguments: argparse.Namespace, reach: float) -> Iterator[None]:
-    """The procedure's errors about its sensor and the edge's image, said with the flags."""
+def _sensor_errors(sensor: str) -> Iterator[None]:
+    """The refusal of a sensor too small for an edge's cross-section, said with --sensor.
+
+    Said so by the table's build and by the measurement alike.
+    """
     try:
         yield
     except ValueError as error:
         message = str(error)
         if message.startswith("`sensor` is too small"):
             raise CommandLineError(
-                f"--sensor {arguments.sensor} {message.removeprefix('`sensor` ')}"
+                f"--sensor {sensor} {message.removeprefix('`sensor` ')}"
             ) from None
+        raise
+
+
+@contextlib.contextmanager
+def _edge_errors(arguments: argparse.Namespace, reach: float) -> Iterator[None]:
+    """The procedure's errors about its sensor and the edge's image, said with the flags."""
+    try:
+        with _sensor_errors(arguments.sensor):
+            yield
+    except ValueError as error:
+        message = str(error)
         if message.startswith("`image` shows its edge"):  # past the border, seen from noise
             raise CommandLineError(
                 f"{_position_flags(arguments)}: the edge's crest was imaged too near the "
@@ -224,14 +238,17 @@ def edge_radius(arguments: argparse.Namespace) -> int:
     reach = largest_edge_offset(make_sensor(arguments.sensor))
     _check_edge_position(arguments, reach)
     built: list[str] = []
-    table = file_or_build(
-        arguments.table,
-        EdgeRadiusTable.load,
-        lambda path: build_edge_radius_table(sensor=arguments.sensor, forces=forces, path=path),
-        "edge-radius table",
-        "--table",
-        built,
-    )
+    with _sensor_errors(arguments.sensor):
+        table = file_or_build(
+            arguments.table,
+            EdgeRadiusTable.load,
+            lambda path: build_edge_radius_table(
+                sensor=arguments.sensor, forces=forces, path=path
+            ),
+            "edge-radius table",
+            "--table",
+            built,
+        )
     if table is not None:
         _check_made_on("--table", arguments.table, table.sensor, arguments.sensor)
         made = tuple(float(force) for force in table.forces)
@@ -243,7 +260,7 @@ def edge_radius(arguments: argparse.Namespace) -> int:
             )
         forces = made
     elif arguments.forces is not None:  # the default table is made at the default forces
-        with building("edge-radius table"):
+        with _sensor_errors(arguments.sensor), building("edge-radius table"):
             table = build_edge_radius_table(sensor=arguments.sensor, forces=forces)
     with _edge_errors(arguments, reach):
         result = measure_edge_radius(
