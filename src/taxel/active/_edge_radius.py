@@ -36,6 +36,7 @@ from taxel.active._finger import SimulatedFinger
 from taxel.active._imaging import imaging_sensor
 from taxel.active._probe import Probe
 from taxel.active._procedure import ProcedureStep, step_from_reading
+from taxel.active._progress import Progress, check_progress
 from taxel.active._scene import ProfileObject
 from taxel.frames import make_pose
 from taxel.mechanics import Cylinder
@@ -317,6 +318,7 @@ def build_edge_radius_table(
     orientations: int = 4,
     rng: Any = 0,
     path: str | os.PathLike[str] | None = None,
+    progress: Progress | None = None,
 ) -> EdgeRadiusTable:
     """Build the edge radius table in simulation by pressing edges of known radius.
 
@@ -338,6 +340,9 @@ def build_edge_radius_table(
         Noise of the frames and the offsets (default seed 0; None: noise-free frames).
     path : path, optional
         Where to save the table as JSON.
+    progress : callable, optional
+        Called as ``progress(done, len(radii) * orientations)`` after each edge pressed
+        (None: not told).
 
     Returns
     -------
@@ -359,6 +364,7 @@ def build_edge_radius_table(
     forces = [check_positive("forces", force) for force in forces]
     orientations = check_count("orientations", orientations, minimum=2)
     generator = as_rng("rng", rng)
+    progress = check_progress(progress)
     check_section_fits("sensor", chosen.shape, chosen.taxel_pitch)
     for radius in radii:
         _check_resolved("radii", radius, chosen)
@@ -377,6 +383,8 @@ def build_edge_radius_table(
                 finger.retract()
             pairs.append(sections)
             pair_radii.append(radius)
+            if progress is not None:
+                progress(len(pairs), len(radii) * int(orientations))
     table = fit_edge_radius_table(pair_radii, pairs, sensor=chosen.name)
     if path is not None:
         table.save(path)

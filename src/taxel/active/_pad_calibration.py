@@ -27,6 +27,7 @@ from taxel.active._deformable_objects import make_block
 from taxel.active._finger import SimulatedFinger
 from taxel.active._imaging import imaging_sensor
 from taxel.active._json_files import read_json, write_json
+from taxel.active._progress import Progress, check_progress
 from taxel.active._scene import ProfileObject, make_ball
 from taxel.features import prepare
 from taxel.frames import make_pose
@@ -198,6 +199,7 @@ def calibrate_pad(
     forces: Sequence[float] = (0.5, 12.0, 39.0),
     radii: Sequence[float] | None = None,
     rng: Any = 0,
+    progress: Progress | None = None,
 ) -> PadCalibration:
     """Calibrate the pad's compression in simulation on rigid balls and a rigid cube.
 
@@ -216,6 +218,9 @@ def calibrate_pad(
         between its points (capacitive4x4's, 5 mm apart, miss the 2 mm ball).
     rng : numpy.random.Generator or int, optional
         Noise of the frames (default seed 0; None: noise-free).
+    progress : callable, optional
+        Called as ``progress(done, total)`` after each press, ``total`` being the distinct
+        forces times the references (None: not told).
 
     Returns
     -------
@@ -233,6 +238,7 @@ def calibrate_pad(
             f"`forces` must hold at least 3 distinct forces (touch, light, firm), got {forces}"
         )
     generator = as_rng("rng", rng)
+    progress = check_progress(progress)
     chosen = imaging_sensor(sensor)
     nearest = _nearest_grid_point(chosen)
     if radii is None:
@@ -256,6 +262,8 @@ def calibrate_pad(
             finger.retract()
             areas[i, j] = core_area(reading.frame.raw, chosen)
             compressions[i, j] = reading.travel - _STANDOFF
+            if progress is not None:
+                progress(j * len(forces) + i + 1, areas.size)
     return PadCalibration(
         forces=np.array(forces), areas=areas, compressions=compressions, sensor=chosen.name
     )

@@ -27,6 +27,7 @@ from taxel.active._probe_plane import (
     press_and_locate,
 )
 from taxel.active._procedure import ProcedureStep
+from taxel.active._progress import Progress, check_progress
 from taxel.active._scene import Box
 from taxel.frames import as_pose, make_pose, transform_points
 
@@ -188,7 +189,7 @@ class CornerProbing:
             poses.append(make_pose(rotation, transform_points(guess, local)))
         return poses
 
-    def run(self, probe: Probe, guess: Any) -> CornerEstimate:
+    def run(self, probe: Probe, guess: Any, *, progress: Progress | None = None) -> CornerEstimate:
         """Probe the three faces around the guessed corner and intersect their planes.
 
         Parameters
@@ -196,6 +197,9 @@ class CornerProbing:
         probe : Probe
         guess : array_like
             (4, 4) approximate corner frame T_BC (see `box_corner_frame`).
+        progress : callable, optional
+            Called as ``progress(done, 3 * probes_per_face)`` after each press (None: not
+            told).
 
         Returns
         -------
@@ -209,6 +213,7 @@ class CornerProbing:
         """
         check_instance("probe", probe, Probe)
         guess = as_pose(guess, name="guess")
+        progress = check_progress(progress)
         calibration = self.calibration or default_calibration(probe.sensor)
         extent = probe.sensor.geometry.extent
         half_diagonal = float(np.hypot(*extent)) / 2
@@ -224,6 +229,8 @@ class CornerProbing:
                 points.append(point)
                 compressions.append(contact.compression)
                 steps.append(contact_step(f"{label}: press", reading, contact, point))
+                if progress is not None:
+                    progress(len(steps), 3 * self.probes_per_face)
             normal, centroid, distances = fit_plane(points, outward=-guess[:3, face])
             faces.append(
                 PlaneEstimate(
@@ -269,6 +276,7 @@ def locate_corner(
     normal_force: float = 5.0,
     probes_per_face: int = 3,
     calibration: ContactPointCalibration | None = None,
+    progress: Progress | None = None,
 ) -> CornerEstimate:
     """Locate a box corner and its edges by probing three faces (one call of `CornerProbing`).
 
@@ -282,6 +290,8 @@ def locate_corner(
     probes_per_face : int, default 3
         Presses per face (>= 3).
     calibration : ContactPointCalibration, optional
+    progress : callable, optional
+        Called as ``progress(done, 3 * probes_per_face)`` after each press (None: not told).
 
     Returns
     -------
@@ -305,4 +315,4 @@ def locate_corner(
     procedure = CornerProbing(
         normal_force=normal_force, probes_per_face=probes_per_face, calibration=calibration
     )
-    return procedure.run(probe, guess)
+    return procedure.run(probe, guess, progress=progress)

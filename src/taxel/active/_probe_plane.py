@@ -27,6 +27,7 @@ from taxel.active._contact_point import (
 )
 from taxel.active._probe import Probe, ProbeReading
 from taxel.active._procedure import ProcedureStep, step_from_reading
+from taxel.active._progress import Progress, check_progress
 from taxel.frames import as_pose, transform_directions, transform_points
 from taxel.sensor import TactileSensor
 
@@ -196,7 +197,9 @@ class PlaneProbing:
         self.calibration = calibration
         self.model = model
 
-    def run(self, probe: Probe, poses: Sequence[Any]) -> PlaneEstimate:
+    def run(
+        self, probe: Probe, poses: Sequence[Any], *, progress: Progress | None = None
+    ) -> PlaneEstimate:
         """Press at each approach pose in turn and fit the plane.
 
         Parameters
@@ -206,6 +209,8 @@ class PlaneProbing:
         poses : sequence of array_like
             N >= 3 approach poses T_BS (4x4), the sensor facing the surface, not touching;
             their positions must not all lie on one line.
+        progress : callable, optional
+            Called as ``progress(done, N)`` after each press (None: not told).
 
         Returns
         -------
@@ -220,6 +225,7 @@ class PlaneProbing:
         """
         check_instance("probe", probe, Probe)
         poses = check_poses(poses)
+        progress = check_progress(progress)
         calibration = self.calibration or default_calibration(probe.sensor)
         points, normals, compressions, steps = [], [], [], []
         outward = np.zeros(3)
@@ -243,6 +249,8 @@ class PlaneProbing:
             normals.append(local)
             outward -= transform_directions(reading.pose, [0.0, 0.0, 1.0])
             steps.append(contact_step(f"probe {index + 1}: press", reading, contact, point))
+            if progress is not None:
+                progress(index + 1, len(poses))
         normal, centroid, distances = fit_plane(points, outward=outward)
         residual = float(np.sqrt(np.mean(distances**2)))
         return PlaneEstimate(
@@ -325,6 +333,7 @@ def probe_plane(
     *,
     normal_force: float = 5.0,
     calibration: ContactPointCalibration | None = None,
+    progress: Progress | None = None,
 ) -> PlaneEstimate:
     """Probe a surface at several poses and fit a plane (one call of `PlaneProbing`).
 
@@ -338,6 +347,8 @@ def probe_plane(
         Force of each press [N].
     calibration : ContactPointCalibration, optional
         The sensor's calibration (made on first use when omitted).
+    progress : callable, optional
+        Called as ``progress(done, N)`` after each press (None: not told).
 
     Returns
     -------
@@ -363,4 +374,4 @@ def probe_plane(
     (True, True)
     """
     procedure = PlaneProbing(normal_force=normal_force, calibration=calibration)
-    return procedure.run(probe, poses)
+    return procedure.run(probe, poses, progress=progress)

@@ -18,6 +18,7 @@ from taxel.active._finger import SimulatedFinger
 from taxel.active._imaging import imaging_sensor
 from taxel.active._probe_corner import CornerEstimate, CornerProbing, box_corner_frame
 from taxel.active._probe_plane import MIN_PROBES, PlaneEstimate, PlaneProbing
+from taxel.active._progress import Progress
 from taxel.active._scene import Box
 from taxel.frames import make_pose, transform_directions, transform_points
 
@@ -88,6 +89,7 @@ def plane_probing_trial(
     normal_force: float = 5.0,
     model_error: float = 0.0,
     seed: int = 0,
+    progress: Progress | None = None,
 ) -> PlaneTrial:
     """Probe the top face of a randomly tilted box at random poses and score the plane.
 
@@ -111,6 +113,8 @@ def plane_probing_trial(
         turn frames into contact points (0: the true cover; 0.3: 30 % too stiff).
     seed : int, default 0
         Seeds the box pose, the probe poses and the sensor noise.
+    progress : callable, optional
+        Called as ``progress(done, n_probes)`` after each press (None: not told).
 
     Returns
     -------
@@ -149,7 +153,8 @@ def plane_probing_trial(
         position = transform_points(box.pose, local) + np.array([0.0, 0.0, 0.02])
         poses.append(make_pose(rotation, position))
     finger = SimulatedFinger(probe_sensor, [box], poses[0], rng=seed)
-    estimate = PlaneProbing(normal_force=normal_force, model=model).run(finger, poses)
+    procedure = PlaneProbing(normal_force=normal_force, model=model)
+    estimate = procedure.run(finger, poses, progress=progress)
     cosine = float(np.clip(estimate.normal @ true_normal, -1.0, 1.0))
     point_errors = (estimate.contact_points - top_point) @ true_normal
     return PlaneTrial(
@@ -213,6 +218,7 @@ def corner_probing_trial(
     probes_per_face: int = 3,
     normal_force: float = 5.0,
     seed: int = 0,
+    progress: Progress | None = None,
 ) -> CornerTrial:
     """Locate a corner of a box at a random place and heading from a rough guess.
 
@@ -231,6 +237,8 @@ def corner_probing_trial(
     probes_per_face : int, default 3
     normal_force : float, default 5.0
     seed : int, default 0
+    progress : callable, optional
+        Called as ``progress(done, 3 * probes_per_face)`` after each press (None: not told).
 
     Returns
     -------
@@ -260,7 +268,7 @@ def corner_probing_trial(
     start = make_pose(translation=[0.0, 0.0, float(size[2]) + 0.1])
     finger = SimulatedFinger(probe_sensor, [box], start, rng=seed)
     procedure = CornerProbing(normal_force=normal_force, probes_per_face=probes_per_face)
-    estimate = procedure.run(finger, guess)
+    estimate = procedure.run(finger, guess, progress=progress)
     cosines = np.clip(np.sum(estimate.edge_directions * true[:3, :3].T, axis=1), -1.0, 1.0)
     return CornerTrial(
         estimate=estimate,

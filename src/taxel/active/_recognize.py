@@ -22,6 +22,7 @@ from taxel.active._finger import SimulatedFinger
 from taxel.active._imaging import imaging_sensor
 from taxel.active._model_library import ModelLibrary
 from taxel.active._object_library import MODEL_NAMES, make_model
+from taxel.active._progress import Progress, check_progress
 from taxel.active._recognition import Recognition, RecognitionResult, explore, touch_descriptor
 from taxel.active._touch_features import TOUCH_FEATURES
 from taxel.frames import make_pose
@@ -59,6 +60,7 @@ def build_model_library(
     position_error: float = DEFAULT_POSITION_ERROR,
     rng: Any = 0,
     path: str | os.PathLike[str] | None = None,
+    progress: Progress | None = None,
 ) -> ModelLibrary:
     """Touch every model at canonical poses and keep the descriptors.
 
@@ -83,6 +85,9 @@ def build_model_library(
         A library touched with the noise on learns how much each feature varies.
     path : path, optional
         Where to save the library as JSON.
+    progress : callable, optional
+        Called as ``progress(done, total)`` after each canonical pose touched, ``total``
+        being the distinct models times `rotations` (None: not told).
 
     Returns
     -------
@@ -96,9 +101,11 @@ def build_model_library(
     step = check_positive("step", step)
     position_error = check_positive("position_error", position_error, allow_zero=True)
     generator = as_rng("rng", rng)
+    progress = check_progress(progress)
     chosen = imaging_sensor(sensor)
     templates, labels = [], []
-    for name in dict.fromkeys(models):
+    unique = list(dict.fromkeys(models))
+    for name in unique:
         for k in range(rotations):
             angle = 2 * math.pi * k / rotations
             # every other pose off-centre by most of the placement error, in turning directions
@@ -109,6 +116,8 @@ def build_model_library(
             vectors, _ = explore(finger, normal_force=normal_force, step=step)
             templates.append(touch_descriptor(vectors))
             labels.append(name)
+            if progress is not None:
+                progress(len(templates), len(unique) * rotations)
     library = ModelLibrary.from_templates(
         templates, labels, DESCRIPTOR_NAMES, normal_force=normal_force, step=step,
         sensor=chosen.name,

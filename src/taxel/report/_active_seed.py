@@ -60,9 +60,7 @@ def _imprints(
 def deformation(context: DemoContext, *, forces: tuple[float, float] = (12.0, 39.0)) -> Experiment:
     """Figures 9 and 10: a racquet ball against a 12.5 mm acrylic sphere, pressed twice."""
     radii = (3e-3, 12e-3, 40e-3) if context.quick else None
-    calibration = calibrate_pad(
-        SENSOR, forces=(0.5, *forces), rng=context.seed, **({"radii": radii} if radii else {})
-    )
+    calibration = calibrate_pad(SENSOR, forces=(0.5, *forces), rng=context.seed, radii=radii)
     ball = measure_deformation(
         "racquet ball", sensor=SENSOR, forces=forces, calibration=calibration, rng=context.seed
     )
