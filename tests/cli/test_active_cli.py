@@ -443,17 +443,28 @@ def test_a_terminal_is_told_of_the_build_while_it_runs(monkeypatch, tmp_path):
     args = ["active", "stiffness", "--sensor", "capacitive4x4", "--forces", "2", "4"]
     ball = ["--shape", "ball", "--size-mm", "0.5", "--modulus-mpa", "1"]
     assert main([*args, *ball, "--calibration", str(pad)]) == 2
-    # the notice, erased (carriage return, clear to the line's end) before the error
+    # the notice, then the build's progress bar in its place (of 21 presses: 7 references at
+    # 3 forces), both erased (carriage return, clear to the line's end) before the error
     notice = "building the pad calibration (this takes a while) ...\r\x1b[K"
-    assert terminal.getvalue().startswith(
-        notice + "taxel active stiffness: error: --size-mm 0.5: the finger found no custom"
-    )
-    assert terminal.getvalue().count("\n") == 1
+    shown, erased, error = terminal.getvalue().rpartition("\r\x1b[K")
+    assert shown.startswith(notice + "\rbuilding the pad calibration:")
+    assert "/21 " in shown
+    assert "\n" not in shown
+    assert error.startswith("taxel active stiffness: error: --size-mm 0.5: the finger found no")
+    assert error.count("\n") == 1
     terminal.seek(0)
     terminal.truncate()
     other = tmp_path / "other.json"
     assert main([*args, "--calibration", str(other), "--json"]) == 0
-    assert terminal.getvalue() == f"{notice}built the pad calibration and saved it to {other}\n"
+    shown, erased, note = terminal.getvalue().rpartition("\r\x1b[K")
+    assert shown.startswith(notice) and "/21 " in shown
+    assert note == f"built the pad calibration and saved it to {other}\n"
+    # --no-progress: the notice alone
+    terminal.seek(0)
+    terminal.truncate()
+    last = tmp_path / "last.json"
+    assert main([*args, "--calibration", str(last), "--json", "--no-progress"]) == 0
+    assert terminal.getvalue() == f"{notice}built the pad calibration and saved it to {last}\n"
 
 
 def test_a_terminal_is_told_of_the_pad_calibration_the_procedure_builds(monkeypatch, capsys):
@@ -461,8 +472,11 @@ def test_a_terminal_is_told_of_the_pad_calibration_the_procedure_builds(monkeypa
     monkeypatch.setattr("sys.stderr", terminal)
     args = ["active", "stiffness", "--sensor", "capacitive4x4", "--forces", "2", "4", "--json"]
     assert main(args) == 0
-    # no --calibration: the procedure calibrates the pad itself, and says so while it does
-    assert terminal.getvalue() == "building the pad calibration (this takes a while) ...\r\x1b[K"
+    # no --calibration: the pad is calibrated first, said while it is, with a progress bar
+    shown = terminal.getvalue()
+    assert shown.startswith("building the pad calibration (this takes a while) ...\r\x1b[K")
+    assert "building the pad calibration: " in shown and "/21 " in shown
+    assert shown.endswith("\r\x1b[K") and "\n" not in shown
     assert json.loads(capsys.readouterr().out)["deformable"] is True  # the racquet ball
 
 

@@ -35,6 +35,11 @@ def _add(
     parser = group.add_parser(name, help=help_text, description=help_text)
     parser.add_argument("--json", action="store_true", help="print the result as JSON")
     parser.add_argument("--seed", type=seed, default=0, help="random seed of the trial")
+    parser.add_argument(
+        "--no-progress",
+        action="store_true",
+        help="no progress bar (one is drawn on stderr only when it is a terminal)",
+    )
     parser.set_defaults(handler=handler)
     return parser
 

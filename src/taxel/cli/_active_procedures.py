@@ -16,6 +16,7 @@ from typing import Any
 
 from taxel.cli._files import building, file_or_build
 from taxel.cli._main import CommandLineError
+from taxel.cli._progress import progress_bar
 
 __all__ = ["edge_radius", "finger_limit", "locate_corner", "probe_plane", "recognize", "stiffness"]
 
@@ -106,14 +107,16 @@ def probe_plane(arguments: argparse.Namespace) -> int:
     from taxel.active import plane_probing_trial
 
     _check_forces("--force", [arguments.force], arguments.sensor)
-    trial = plane_probing_trial(
-        arguments.sensor,
-        n_probes=arguments.probes,
-        face_tilt=math.radians(arguments.face_tilt_deg),
-        pose_tilt=math.radians(arguments.pose_tilt_deg),
-        normal_force=arguments.force,
-        seed=arguments.seed,
-    )
+    with progress_bar("probing", "press", enabled=not arguments.no_progress) as progress:
+        trial = plane_probing_trial(
+            arguments.sensor,
+            n_probes=arguments.probes,
+            face_tilt=math.radians(arguments.face_tilt_deg),
+            pose_tilt=math.radians(arguments.pose_tilt_deg),
+            normal_force=arguments.force,
+            seed=arguments.seed,
+            progress=progress,
+        )
     estimate = trial.estimate
     lines = [
         f"probed {arguments.probes} times with {arguments.sensor} at {arguments.force:g} N",
@@ -130,13 +133,17 @@ def locate_corner(arguments: argparse.Namespace) -> int:
 
     _check_forces("--force", [arguments.force], arguments.sensor)
     why = "probing from a guess this far off the corner missed the box"
-    with _no_contact(f"--guess-error-mm {arguments.guess_error_mm:g}", why):
+    with (
+        _no_contact(f"--guess-error-mm {arguments.guess_error_mm:g}", why),
+        progress_bar("probing", "press", enabled=not arguments.no_progress) as progress,
+    ):
         trial = corner_probing_trial(
             arguments.sensor,
             guess_error=arguments.guess_error_mm * 1e-3,
             probes_per_face=arguments.probes_per_face,
             normal_force=arguments.force,
             seed=arguments.seed,
+            progress=progress,
         )
     lines = [
         f"probed three faces ({arguments.probes_per_face} presses each) with {arguments.sensor}",
@@ -238,16 +245,19 @@ def edge_radius(arguments: argparse.Namespace) -> int:
     reach = largest_edge_offset(make_sensor(arguments.sensor))
     _check_edge_position(arguments, reach)
     built: list[str] = []
+    bar = not arguments.no_progress
     with _sensor_errors(arguments.sensor):
         table = file_or_build(
             arguments.table,
             EdgeRadiusTable.load,
-            lambda path: build_edge_radius_table(
-                sensor=arguments.sensor, forces=forces, path=path
+            lambda path, progress: build_edge_radius_table(
+                sensor=arguments.sensor, forces=forces, path=path, progress=progress
             ),
             "edge-radius table",
             "--table",
             built,
+            unit="edge",
+            bar=bar,
         )
     if table is not None:
         _check_made_on("--table", arguments.table, table.sensor, arguments.sensor)
@@ -259,9 +269,14 @@ def edge_radius(arguments: argparse.Namespace) -> int:
                 "--table"
             )
         forces = made
-    elif arguments.forces is not None:  # the default table is made at the default forces
-        with _sensor_errors(arguments.sensor), building("edge-radius table"):
-            table = build_edge_radius_table(sensor=arguments.sensor, forces=forces)
+    else:  # (with no --forces, the table measure_edge_radius makes by default)
+        with (
+            _sensor_errors(arguments.sensor),
+            building("edge-radius table", "edge", bar=bar) as progress,
+        ):
+            table = build_edge_radius_table(
+                sensor=arguments.sensor, forces=forces, progress=progress
+            )
     with _edge_errors(arguments, reach):
         result = measure_edge_radius(
             arguments.radius_mm * 1e-3,
@@ -339,9 +354,14 @@ def _deformation_object(arguments: argparse.Namespace) -> str:
 def stiffness(arguments: argparse.Namespace) -> int:
     from taxel.active import PadCalibration, calibrate_pad, measure_deformation
 
-    def build(path: str) -> Any:
-        calibration = calibrate_pad(arguments.sensor, forces=(_TOUCH, *arguments.forces))
-        calibration.save(path)
+    bar = not arguments.no_progress
+
+    def build(path: str | None, progress: Any) -> Any:
+        calibration = calibrate_pad(
+            arguments.sensor, forces=(_TOUCH, *arguments.forces), progress=progress
+        )
+        if path is not None:
+            calibration.save(path)
         return calibration
 
     name = _deformation_object(arguments)
@@ -359,6 +379,7 @@ def stiffness(arguments: argparse.Namespace) -> int:
         "pad calibration",
         "--calibration",
         built,
+        bar=bar,
     )
     if calibration is not None:
         _check_made_on(
@@ -373,9 +394,13 @@ def stiffness(arguments: argparse.Namespace) -> int:
                 f"{arguments.calibration} was made at {' '.join(f'{f:g}' for f in made)} N; "
                 "give those or another --calibration"
             )
-    # with no --calibration the procedure calibrates the pad first, the long part
+    # with no --calibration the pad is calibrated first (as the procedure would), the long part
     with (
-        building("pad calibration") if calibration is None else contextlib.nullcontext(),
+        (
+            building("pad calibration", bar=bar)
+            if calibration is None
+            else contextlib.nullcontext()
+        ) as progress,
         (
             _no_contact(
                 f"--size-mm {arguments.size_mm:g}",
@@ -385,6 +410,8 @@ def stiffness(arguments: argparse.Namespace) -> int:
             else contextlib.nullcontext()
         ),
     ):
+        if calibration is None:
+            calibration = build(None, progress)
         result = measure_deformation(
             name,
             sensor=arguments.sensor,
@@ -419,13 +446,18 @@ def recognize(arguments: argparse.Namespace) -> int:
     force = _TOUCH_FORCE if arguments.force is None else arguments.force
     _check_forces("--force", [force], arguments.sensor)
     built: list[str] = []
+    bar = not arguments.no_progress
     library = file_or_build(
         arguments.library,
         ModelLibrary.load,
-        lambda path: build_model_library(sensor=arguments.sensor, normal_force=force, path=path),
+        lambda path, progress: build_model_library(
+            sensor=arguments.sensor, normal_force=force, path=path, progress=progress
+        ),
         "model library",
         "--library",
         built,
+        unit="pose",
+        bar=bar,
     )
     if library is not None:
         _check_made_on("--library", arguments.library, library.sensor, arguments.sensor)
@@ -435,9 +467,11 @@ def recognize(arguments: argparse.Namespace) -> int:
                 f"{library.normal_force:g} N; give that or another --library"
             )
         force = library.normal_force
-    elif arguments.force is not None:  # the default library is made at the default force
-        with building("model library"):
-            library = build_model_library(sensor=arguments.sensor, normal_force=force)
+    else:  # (with no --force, the library recognize_object makes by default)
+        with building("model library", "pose", bar=bar) as progress:
+            library = build_model_library(
+                sensor=arguments.sensor, normal_force=force, progress=progress
+            )
     result = recognize_object(
         arguments.object,
         library=library,

@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from taxel.cli._main import CommandLineError
+from taxel.cli._progress import ProgressCallback, progress_bar
 
 __all__ = ["building", "cannot_write", "file_or_build", "reading", "writing"]
 
@@ -64,41 +65,53 @@ def reading(flag: str, path: str | os.PathLike[str]) -> Iterator[None]:
         raise
 
 
+def _erase_line() -> None:
+    sys.stderr.write("\r\x1b[K")  # back to the line's start, and clear it
+    sys.stderr.flush()
+
+
 @contextmanager
-def building(what: str) -> Iterator[None]:
+def building(what: str, unit: str = "press", *, bar: bool = True) -> Iterator[ProgressCallback]:
     """Say on a terminal that the `what` is being built while it is; erase it after.
 
     A build takes seconds to minutes, so a user at a terminal is told why nothing happens.
-    The line is erased when the build ends, well or not: an error in the build, or in the
-    procedure after it, is then the one line left on stderr, as for any error; a script
-    reading stderr (not a terminal) gets no such line at all.
+    The block gets a ``progress(done, total)`` callback for the build: at its first call
+    a progress bar counting `unit` replaces the notice (unless `bar` is False, as with
+    ``--no-progress``; see `progress_bar`). The line is erased when the build ends, well
+    or not: an error in the build, or in the procedure after it, is then the one line left
+    on stderr, as for any error; a script reading stderr (not a terminal) gets no such
+    line at all.
     """
     shown = sys.stderr.isatty()
     if shown:  # (short, so that it fits on one line of a terminal and erases whole)
         sys.stderr.write(f"building the {what} (this takes a while) ...")
         sys.stderr.flush()
     try:
-        yield
+        with progress_bar(f"building the {what}", unit, enabled=bar, before=_erase_line) as update:
+            yield update
     finally:
         if shown:
-            sys.stderr.write("\r\x1b[K")  # back to the line's start, and clear it
-            sys.stderr.flush()
+            _erase_line()
 
 
 def file_or_build(
     path: str | None,
     load: Callable[[str], Any],
-    build: Callable[[str], Any],
+    build: Callable[[str, ProgressCallback], Any],
     what: str,
     option: str,
     built: list[str],
+    *,
+    unit: str = "press",
+    bar: bool = True,
 ) -> Any:
     """Load `path` when it exists; otherwise build it there (never overwriting a file).
 
     Where it cannot be written (a missing folder, another suffix) is found before the
-    long build, not after it. A file built is noted in `built`, for the command to tell
-    once it has succeeded: told before, with an error after it, an error would leave two
-    lines on stderr.
+    long build, not after it. `build` is called as ``build(path, progress)``, `progress`
+    driving the bar of `building` (counting `unit`; none when `bar` is False). A file
+    built is noted in `built`, for the command to tell once it has succeeded: told before,
+    with an error after it, an error would leave two lines on stderr.
     """
     if path is None:
         return None
@@ -108,7 +121,7 @@ def file_or_build(
         with reading(option, path):
             return load(path)
     check_new_file(path, suffix=".json", name=option)
-    with building(what):
-        made = build(path)
+    with building(what, unit, bar=bar) as progress:
+        made = build(path, progress)
     built.append(f"built the {what} and saved it to {path}")
     return made
