@@ -588,3 +588,36 @@ def test_a_tv_search_that_misses_its_target_is_printed(frame_file, tmp_path, cap
     first = capsys.readouterr().out.splitlines()[0]
     assert "(discrepancy, at its bound: no mu reaches the target, held at " in first
     assert first.endswith(", target 8e+05)")
+
+
+def test_readings_below_the_calibrations_no_load_level_are_warned_of(tmp_path, capsys):
+    # resistive16 reads 79 to 269 at rest and its ADC gives codes 0 to 4095: -50 everywhere
+    # is no frame of it; it read as -12 N without a word
+    calibration = tmp_path / "cal.npz"
+    assert main(["calibrate", "--sensor", "resistive16", "--out", str(calibration)]) == 0
+    negative, low = tmp_path / "negative.npy", tmp_path / "low.npy"
+    np.save(negative, np.full((16, 16), -50))
+    np.save(low, np.full((16, 16), 30))
+    capsys.readouterr()
+    argv = ["reconstruct", str(negative), "--sensor", "resistive16"]
+    argv += ["--calibration", str(calibration), "--out", str(tmp_path / "p.npy")]
+    assert main(argv) == 0
+    err = capsys.readouterr().err
+    assert err == (
+        f"taxel reconstruct: warning: 256 taxel readings of {negative} are below the "
+        "calibration's no-load level (down to -50 (a code below 0, which no ADC outputs); "
+        "no load reads 78.875 to 268.5): they read as a negative pressure, and the force "
+        "recovered is wrong (is FRAME a raw frame of this resistive16?)\n"
+    )
+    argv[1] = str(low)
+    assert main([*argv, "--overwrite"]) == 0
+    err = capsys.readouterr().err
+    assert "readings of" in err and "down to 30; no load reads 78.875" in err
+    # noisy frames at rest and loaded are not warned of
+    for force in ("0", "2"):
+        raw = tmp_path / f"raw{force}.npy"
+        simulate = ["simulate", "--sensor", "resistive16", "--object", "sphere", "--seed", "5"]
+        assert main([*simulate, "--force", force, "--out", str(raw)]) == 0
+        argv[1] = str(raw)
+        assert main([*argv, "--overwrite"]) == 0
+        assert capsys.readouterr().err == ""

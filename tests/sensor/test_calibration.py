@@ -336,3 +336,22 @@ def test_counts_and_rng_of_a_calibration_are_checked(sensors):
     for rng, error in (("x", TypeError), (1.5, TypeError), (True, TypeError), (-1, ValueError)):
         with pytest.raises(error, match="`rng`"):
             calibrate(sensor, rng=rng)
+
+
+def test_readings_below_no_load_are_flagged_past_the_noise():
+    sensor = make_sensor("resistive16")
+    calibration = calibrate(sensor, rng=3)
+    rest = calibration.readings[0]
+    assert not calibration.below_rest(rest).any()
+    assert not calibration.below_rest(calibration.readings[-1]).any()
+    # the noise of frames at rest stays within the margin
+    frames = np.array(
+        [
+            sensor.frame_from_pressure(np.zeros(sensor.load_grid.shape), rng=seed).raw
+            for seed in range(10)
+        ]
+    )
+    assert not calibration.below_rest(frames).any()
+    assert calibration.below_rest(np.full((2, 16, 16), -50)).all()
+    with pytest.raises(ValueError, match=r"`raw` must end in the calibrated shape \(16, 16\)"):
+        calibration.below_rest(np.zeros((4, 4)))

@@ -74,13 +74,9 @@ def _run(arguments: argparse.Namespace) -> int:
     check_new_file(
         arguments.out, suffix=".npy", overwrite=arguments.overwrite, name="--out", inputs=(path,)
     )
-    frame, saturated = load_readings(path, arguments.sensor, arguments.calibration)
-    if saturated:
-        sys.stderr.write(
-            f"taxel reconstruct: warning: {saturated} taxel readings of {path} are at or "
-            "beyond the calibration's full scale: the load there is lost, and the force "
-            "recovered is too small\n"
-        )
+    frame, warnings = load_readings(path, arguments.sensor, arguments.calibration)
+    for warning in warnings:
+        sys.stderr.write(f"taxel reconstruct: warning: {warning}\n")
     spec = forward_model_preset(arguments.sensor, oversampling=arguments.oversampling)
     if arguments.noise_level is not None:
         try:

@@ -10,7 +10,7 @@ import numpy as np
 from taxel.cli._files import reading
 
 if TYPE_CHECKING:
-    from taxel.sensor import TactileSensor
+    from taxel.sensor import Calibration, TactileSensor
 
 __all__ = ["LARGEST_PRESSURE", "load_readings"]
 
@@ -19,13 +19,14 @@ LARGEST_PRESSURE = 1e12  # [Pa]
 
 def load_readings(
     path: Path, sensor_name: str, calibration_path: str | None
-) -> tuple[np.ndarray, int]:
+) -> tuple[np.ndarray, list[str]]:
     """The readings of FRAME in the forward model's quantity, checked in range.
 
     Raw codes go through --calibration (`taxel.reconstruction.calibrated_readings`): to the
     pressure felt at depth [Pa], or for a displacement sensor to the surface displacement
-    [m]. Real numbers without a calibration are taken as readings already. Also returns how
-    many taxel readings are at or beyond the calibration's full scale (0 without one).
+    [m]. Real numbers without a calibration are taken as readings already. Also returns the
+    warnings about raw readings the calibration does not cover: at or beyond its full scale,
+    or below its no-load level (none without a calibration).
     """
     from taxel.sensor import make_sensor
 
@@ -38,7 +39,7 @@ def load_readings(
             "static calibration maps its raw codes (`taxel calibrate` cannot make one); give "
             f"FRAME {str(path)!r} as the stress change each taxel felt [Pa], in real numbers"
         )
-    saturated = 0
+    warnings: list[str] = []
     if calibration_path is not None:
         from taxel.reconstruction import calibrated_readings
         from taxel.sensor import Calibration
@@ -57,7 +58,7 @@ def load_readings(
                 f"of {calibration.shape}, not {sensor.shape}"
             )
         _check_shape(path, frame, sensor)
-        saturated = int(np.count_nonzero(calibration.beyond_full_scale(frame)))
+        warnings = _uncovered(path, frame, calibration)
         frame = calibrated_readings(frame, calibration, sensor)
     elif np.issubdtype(stored, np.integer):
         raise ValueError(
@@ -66,7 +67,33 @@ def load_readings(
         )
     _check_shape(path, frame, sensor)
     _check_range(path, frame, sensor)
-    return frame, saturated
+    return frame, warnings
+
+
+def _uncovered(path: Path, raw: np.ndarray, calibration: Calibration) -> list[str]:
+    """Warnings about raw readings beyond the calibration's full scale or below no load."""
+    warnings = []
+    saturated = int(np.count_nonzero(calibration.beyond_full_scale(raw)))
+    if saturated:
+        warnings.append(
+            f"{saturated} taxel readings of {path} are at or beyond the calibration's full "
+            "scale: the load there is lost, and the force recovered is too small"
+        )
+    below = calibration.below_rest(raw)
+    if np.any(below):
+        rest = calibration.readings[0][calibration.valid]
+        falls = calibration.direction < 0  # (microbend fibres: load lowers the reading)
+        side, worst = ("above", np.max) if falls else ("below", np.min)
+        most = float(worst(raw[below]))
+        code = " (a code below 0, which no ADC outputs)" if most < 0 else ""
+        warnings.append(
+            f"{int(np.count_nonzero(below))} taxel readings of {path} are {side} the "
+            f"calibration's no-load level ({'up' if falls else 'down'} to {most:.6g}{code}; "
+            f"no load reads {float(rest.min()):.6g} to {float(rest.max()):.6g}): they read "
+            "as a negative pressure, and the force recovered is wrong (is FRAME a raw frame "
+            f"of this {calibration.sensor_name}?)"
+        )
+    return warnings
 
 
 def _check_shape(path: Path, frame: np.ndarray, sensor: TactileSensor) -> None:

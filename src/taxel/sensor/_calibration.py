@@ -171,6 +171,45 @@ class Calibration:
         full = self.direction * self.readings[-1]
         return (oriented >= full) & self.valid
 
+    def below_rest(self, raw: Any) -> np.ndarray:
+        """Which taxels read below their no-load reading by more than noise explains.
+
+        No load on the cover reads lower than no load: such a reading is of another sensor,
+        another unit, or no frame of raw codes at all, and `apply` turns it into a negative
+        pressure (it continues the response's slope past no load). A taxel is flagged when
+        its reading lies past its no-load one, on the side away from load, by more than
+        five times its noise (at least the median taxel's: a few repeats of an 8-bit camera
+        may all read one level) and more than 1 % of its span from no load to full scale.
+
+        Parameters
+        ----------
+        raw : array_like, shape (..., *shape)
+            One or more raw frames of the sensor.
+
+        Returns
+        -------
+        numpy.ndarray of bool, shape (..., *shape)
+            False at the taxels `valid` excludes.
+
+        Examples
+        --------
+        >>> from taxel.sensor import calibrate, make_sensor
+        >>> calibration = calibrate(make_sensor("resistive16"))
+        >>> int(calibration.below_rest(np.full((16, 16), -50)).sum())
+        256
+        >>> int(calibration.below_rest(calibration.readings[0]).sum())  # no load
+        0
+        """
+        raw = as_finite_array("raw", raw)
+        shape = self.shape
+        if raw.shape[raw.ndim - len(shape) :] != shape:
+            raise ValueError(f"`raw` must end in the calibrated shape {shape}, got {raw.shape}")
+        rest = self.direction * self.readings[0]
+        span = self.direction * self.readings[-1] - rest
+        typical = np.median(self.noise[self.valid]) if np.any(self.valid) else 0.0
+        margin = np.maximum(5 * np.maximum(self.noise, typical), 0.01 * span)
+        return (self.direction * raw < rest - margin) & self.valid
+
     @cached_property
     def _rest_slope(self) -> np.ndarray:
         """Pressure per unit reading at no load, per taxel [Pa per raw unit]; 0 if flat.
