@@ -242,3 +242,31 @@ def test_an_object_between_the_cell_centres_asks_for_oversampling(tmp_path, caps
         "is over no cell of the 20 x 20 mm load grid (5 mm cells), even at --oversampling 16: "
         "move it onto the sensor\n"
     )
+
+
+def test_a_displacement_sensor_pressed_beyond_full_scale_is_warned_of(tmp_path, capsys):
+    # reflective8x8 feels the cover's displacement, not a stress: its check held the stress
+    # it never computes (zeros) and stayed silent where `taxel reconstruct` warned
+    calibration = tmp_path / "cal.npz"
+    assert main(["calibrate", "--sensor", "reflective8x8", "--out", str(calibration)]) == 0
+    for force, beyond in (("2", 16), ("1", 4), ("0.5", 0)):
+        raw = tmp_path / f"raw{force}.npy"
+        argv = ["simulate", "--sensor", "reflective8x8", "--object", "sphere", "--force", force]
+        capsys.readouterr()
+        assert main([*argv, "--out", str(raw)]) == 0
+        err = capsys.readouterr().err
+        reconstruct = ["reconstruct", str(raw), "--sensor", "reflective8x8", "--calibration"]
+        assert main([*reconstruct, str(calibration), "--out", str(tmp_path / "p.npy")]) == 0
+        told = capsys.readouterr().err
+        (tmp_path / "p.npy").unlink()
+        if not beyond:
+            assert err == told == ""
+            continue
+        assert err.startswith("taxel simulate: warning: the cover moves up to ")
+        assert (
+            f"at {beyond} of them beyond what a plate at reflective8x8's full scale of 4 kPa"
+            in err
+        )
+        # reconstruct counts them too: saturated, or (past the response's peak) read low
+        counts = [int(line.split(": warning: ")[1].split()[0]) for line in told.splitlines()]
+        assert sum(counts) == beyond

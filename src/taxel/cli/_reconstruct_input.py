@@ -15,6 +15,8 @@ if TYPE_CHECKING:
 __all__ = ["LARGEST_PRESSURE", "load_readings"]
 
 LARGEST_PRESSURE = 1e12  # [Pa]
+# a reflective sensor's power peaks at a gap h_min: pressed closer, it reads low again
+_PAST_PEAK = " Or pressed past the peak of its response, where its reading falls again?"
 
 
 def load_readings(
@@ -58,7 +60,7 @@ def load_readings(
                 f"of {calibration.shape}, not {sensor.shape}"
             )
         _check_shape(path, frame, sensor)
-        warnings = _uncovered(path, frame, calibration)
+        warnings = _uncovered(path, frame, calibration, sensor)
         frame = calibrated_readings(frame, calibration, sensor)
     elif np.issubdtype(stored, np.integer):
         raise ValueError(
@@ -70,7 +72,9 @@ def load_readings(
     return frame, warnings
 
 
-def _uncovered(path: Path, raw: np.ndarray, calibration: Calibration) -> list[str]:
+def _uncovered(
+    path: Path, raw: np.ndarray, calibration: Calibration, sensor: TactileSensor
+) -> list[str]:
     """Warnings about raw readings beyond the calibration's full scale or below no load."""
     warnings = []
     saturated = int(np.count_nonzero(calibration.beyond_full_scale(raw)))
@@ -91,7 +95,9 @@ def _uncovered(path: Path, raw: np.ndarray, calibration: Calibration) -> list[st
             f"calibration's no-load level ({'up' if falls else 'down'} to {most:.6g}{code}; "
             f"no load reads {float(rest.min()):.6g} to {float(rest.max()):.6g}): they read "
             "as a negative pressure, and the force recovered is wrong (is FRAME a raw frame "
-            f"of this {calibration.sensor_name}?)"
+            f"of this {calibration.sensor_name}?"
+            + (_PAST_PEAK if sensor.quantity == "displacement" else "")
+            + ")"
         )
     return warnings
 

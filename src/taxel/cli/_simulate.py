@@ -164,16 +164,42 @@ def _warn_if_saturated(frame: Any, sensor: Any) -> None:
     A flat plate at `full_scale` loads the sensing plane with that normal stress; a contact
     that loads it harder drives its taxels past every level a calibration covers, and what
     they read there saturates or is clipped: a reconstruction then recovers too little force.
+    A sensor of the cover's displacement (reflective8x8) feels no stress: for it, each
+    taxel's displacement is held against the one a full-scale plate gives it, as a
+    calibration holds its reading against that plate's.
     """
     if frame.fields is None:
+        return
+    if sensor.quantity == "displacement":
+        _warn_if_moved_beyond_full_scale(frame, sensor)
         return
     felt = float(np.max(-frame.fields.stress))
     if felt > sensor.full_scale:
         sys.stderr.write(
             f"taxel simulate: warning: the taxels feel up to {felt / 1e3:.4g} kPa at the "
             f"sensing depth, above {sensor.name}'s full scale of {sensor.full_scale / 1e3:.4g} "
-            "kPa: their readings saturate, and a reconstruction recovers too little force "
-            "(press more lightly, or with a blunter object)\n"
+            f"kPa: {_SATURATE}\n"
+        )
+
+
+_SATURATE = (
+    "their readings saturate, and a reconstruction recovers too little force (press more "
+    "lightly, or with a blunter object)"
+)
+
+
+def _warn_if_moved_beyond_full_scale(frame: Any, sensor: Any) -> None:
+    """`_warn_if_saturated` for a sensor of the cover's displacement, taxel by taxel."""
+    plate = np.full(sensor.load_grid.shape, sensor.full_scale)
+    full = sensor.sensed_quantity(plate, sensor.fields(plate))
+    moved = np.asarray(frame.quantity)
+    beyond = moved >= full
+    if np.any(beyond):
+        sys.stderr.write(
+            f"taxel simulate: warning: the cover moves up to {np.max(moved) * 1e3:.3g} mm at "
+            f"the taxels: at {int(np.count_nonzero(beyond))} of them beyond what a plate at "
+            f"{sensor.name}'s full scale of {sensor.full_scale / 1e3:.4g} kPa moves it (up to "
+            f"{np.max(full) * 1e3:.3g} mm): {_SATURATE}\n"
         )
 
 
