@@ -74,7 +74,7 @@ def test_fit_then_classify(folders, tmp_path, capsys):
     assert capsys.readouterr().out.splitlines() == lines
     assert main(["texture", "classify", str(tmp_path), "--model", str(model_path)]) == 2
     assert _one_line_error(capsys) == (
-        f"taxel texture classify: error: {tmp_path}: holds no FabricSlide recording "
+        f"taxel texture classify: error: FILE {tmp_path}: holds no FabricSlide recording "
         "(<Fabric>_F*_V*mmps_*.csv)\n"
     )
 
@@ -118,7 +118,9 @@ def test_errors_are_one_line(folders, tmp_path, capsys):
     train, test = folders
     model_path = tmp_path / "model.json"
     assert main(["texture", "fit", str(tmp_path / "absent"), "--out", str(model_path)]) == 2
-    assert "no such directory" in _one_line_error(capsys)
+    assert _one_line_error(capsys) == (
+        f"taxel texture fit: error: DIR {tmp_path / 'absent'}: no such folder\n"
+    )
     with pytest.raises(SystemExit) as stop:  # argparse's own usage errors
         main(["texture", "fit", str(train), "--out", str(model_path), "--neighbors", "0"])
     assert stop.value.code == 2
@@ -142,7 +144,9 @@ def test_errors_are_one_line(folders, tmp_path, capsys):
     assert "Ribbed_F150_V-50mmps_2.csv, line 2: ragged row: 5 fields" in _one_line_error(capsys)
     code = main(["texture", "classify", str(broken), "--model", str(tmp_path / "none.json")])
     assert code == 2
-    assert "no such file" in _one_line_error(capsys)
+    assert _one_line_error(capsys) == (
+        f"taxel texture classify: error: --model {tmp_path / 'none.json'}: no such file\n"
+    )
     not_a_model = tmp_path / "bad.json"
     not_a_model.write_text("[1, 2]")
     code = main(["texture", "classify", str(broken), "--model", str(not_a_model)])
@@ -312,3 +316,30 @@ def test_a_trim_that_leaves_too_little_travel_names_the_trim(folders, tmp_path, 
         f"taxel texture classify: error: {recording}: the model's segment_length must be a "
         "real number, got '0.2'\n"
     )
+
+
+def test_missing_recordings_and_a_single_fabric_are_said_so(folders, tmp_path, capsys):
+    train, test = folders
+    model_path = tmp_path / "model.json"
+    assert main(["texture", "fit", str(train), "--out", str(model_path)]) == 0
+    capsys.readouterr()
+    # a missing recording is missing, not "not a FabricSlide file name"
+    missing = tmp_path / "missing.csv"
+    assert main(["texture", "classify", str(missing), "--model", str(model_path)]) == 2
+    assert _one_line_error(capsys) == (
+        f"taxel texture classify: error: FILE {missing}: no such file or folder\n"
+    )
+    # a folder of one fabric: not "`labels` must name at least 2 classes"
+    one = tmp_path / "one"
+    one.mkdir()
+    for path in train.glob("Ribbed_*.csv"):
+        (one / path.name).write_bytes(path.read_bytes())
+    out = tmp_path / "one.json"
+    assert main(["texture", "fit", str(one), "--out", str(out)]) == 2
+    assert _one_line_error(capsys) == (
+        f"taxel texture fit: error: DIR {one}: holds recordings of one fabric only (Ribbed, "
+        "3 recordings); a classifier tells fabrics apart: give folders with recordings of at "
+        "least 2 fabrics\n"
+    )
+    assert not out.exists()
+    assert main(["texture", "fit", str(one), str(train), "--out", str(out)]) == 0

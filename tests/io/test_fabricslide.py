@@ -136,3 +136,8 @@ def test_real_recordings(name):
     assert recording.readings.mean() == pytest.approx(recording.force_setting, rel=0.15)
     assert np.all(recording.readings >= 0)
     assert np.all(recording.readings == np.round(recording.readings))
+
+
+def test_a_missing_recording_is_missing_whatever_its_name(tmp_path):
+    with pytest.raises(FileNotFoundError, match=r"^no such file: .*missing\.csv$"):
+        read_fabricslide(tmp_path / "missing.csv")

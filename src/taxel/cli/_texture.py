@@ -67,16 +67,26 @@ def _features(path: Path, settings: Mapping[str, Any], names: Mapping[str, str])
         raise type(error)(f"{path}: {message}") from None
 
 
+def _recordings_in(folder: str, argument: str = "DIR") -> list[Path]:
+    """The FabricSlide recordings in `folder`; an error names the `argument` it was given as."""
+    from taxel.io import list_fabricslide_files
+
+    if not Path(folder).exists():
+        raise FileNotFoundError(f"{argument} {folder}: no such folder")
+    try:
+        return list_fabricslide_files(folder)
+    except ValueError as error:  # "FOLDER: not a directory", "FOLDER: holds no ..."
+        raise ValueError(f"{argument} {error}") from None
+
+
 def _fit(arguments: argparse.Namespace) -> int:
     from taxel.active import DEFAULT_BAND_EDGES, fit_texture_classifier
-    from taxel.io import check_new_file, list_fabricslide_files, parse_fabricslide_name
+    from taxel.io import check_new_file, parse_fabricslide_name
 
     # a folder named twice is read once
     files = list(
         dict.fromkeys(
-            path.resolve()
-            for folder in arguments.directories
-            for path in list_fabricslide_files(folder)
+            path.resolve() for folder in arguments.directories for path in _recordings_in(folder)
         )
     )
     if arguments.neighbors > len(files):  # the library's `n_neighbors` bound, as the flag
@@ -102,6 +112,13 @@ def _fit(arguments: argparse.Namespace) -> int:
     }
     features = np.array([_features(path, settings, _FLAGS) for path in files])
     labels = [str(parse_fabricslide_name(path)["fabric"]) for path in files]
+    if len(set(labels)) < 2:  # the library's "`labels` must name at least 2 classes"
+        folders = " ".join(arguments.directories)
+        raise ValueError(
+            f"DIR {folders}: holds recordings of one fabric only ({labels[0]}, "
+            f"{len(labels)} recording{'s' if len(labels) > 1 else ''}); a classifier tells "
+            "fabrics apart: give folders with recordings of at least 2 fabrics"
+        )
     model = fit_texture_classifier(
         features, labels, n_neighbors=arguments.neighbors, settings=settings
     )
@@ -114,13 +131,15 @@ def _fit(arguments: argparse.Namespace) -> int:
 
 def _classify(arguments: argparse.Namespace) -> int:
     from taxel.active import TextureClassifier
-    from taxel.io import list_fabricslide_files
 
     # a folder stands for the recordings in it, as for `fit`
+    for name in arguments.files:  # before the model is read: the likelier mistake
+        if not Path(name).exists():
+            raise FileNotFoundError(f"FILE {name}: no such file or folder")
     files = [
         found
         for name in arguments.files
-        for found in (list_fabricslide_files(name) if Path(name).is_dir() else [Path(name)])
+        for found in (_recordings_in(name, "FILE") if Path(name).is_dir() else [Path(name)])
     ]
     with reading("--model", arguments.model):
         model = TextureClassifier.load(arguments.model)

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel.io._table import read_numeric_table
+from taxel.io._table import check_file, read_numeric_table
 
 __all__ = [
     "CPM_FINGER",
@@ -202,6 +202,7 @@ def read_fabricslide(path: str | os.PathLike[str]) -> FabricSlideRecording:
     >>> recording.time, recording.readings.shape
     (array([0.   , 0.028, 0.056]), (3, 16))
     """
+    check_file(path)  # a missing file is missing, whatever its name
     fields = parse_fabricslide_name(path)
     table = read_numeric_table(path, header=True)
     header = [name.lower() for name in table.header or ()]
