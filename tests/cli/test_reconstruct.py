@@ -276,7 +276,16 @@ def test_unreadable_calibrations_are_one_line_errors(tmp_path, capsys):
     arrays["pressures"] = arrays["pressures"][::-1].copy()
     falling = tmp_path / "falling.npz"
     np.savez(falling, **arrays)
+    other = tmp_path / "other.npz"  # an .npz of other arrays: said in words, not ('meta')
+    np.savez(other, a=np.zeros(3))
+    partial = tmp_path / "partial.npz"
+    np.savez(partial, **{key: arrays[key] for key in ("meta", "pressures", "readings")})
     cases = {
+        tmp_path / "missing.npz": f"--calibration {tmp_path / 'missing.npz'}: no such file\n",
+        other: f"--calibration {other}: not a taxel calibration file: it lacks the array(s) "
+        "felt_fraction, meta, noise, pinned, pressures, readings, unresponsive that `taxel "
+        "calibrate` writes (it holds a)\n",
+        partial: "it lacks the array(s) felt_fraction, noise, pinned, unresponsive that",
         one_array: "not an .npz archive",
         empty: "not a taxel calibration file",
         falling: "`pressures` must rise strictly",
@@ -621,3 +630,20 @@ def test_readings_below_the_calibrations_no_load_level_are_warned_of(tmp_path, c
         argv[1] = str(raw)
         assert main([*argv, "--overwrite"]) == 0
         assert capsys.readouterr().err == ""
+
+
+@pytest.mark.parametrize("command", ["simulate", "reconstruct", "calibrate"])
+def test_an_empty_out_is_reported_as_given(tmp_path, capsys, command):
+    # Path("") reads as ".": the error said "got '.'"
+    frame = tmp_path / "frame.npy"
+    np.save(frame, np.zeros((16, 16)))
+    argv = {
+        "simulate": ["simulate", "--sensor", "resistive16", "--object", "pen", "--force", "1"],
+        "reconstruct": ["reconstruct", str(frame), "--sensor", "resistive16"],
+        "calibrate": ["calibrate", "--sensor", "resistive16"],
+    }[command]
+    assert main([*argv, "--out", ""]) == 2
+    suffix = ".npz" if command == "calibrate" else ".npy"
+    assert capsys.readouterr().err == (
+        f"taxel {command}: error: --out must name a {suffix} file, got ''\n"
+    )

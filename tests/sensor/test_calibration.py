@@ -1,6 +1,7 @@
 """Per-taxel calibration: round trip, masking of faulty taxels, files, refusals."""
 
 import dataclasses
+import json
 
 import numpy as np
 import pytest
@@ -355,3 +356,25 @@ def test_readings_below_no_load_are_flagged_past_the_noise():
     assert calibration.below_rest(np.full((2, 16, 16), -50)).all()
     with pytest.raises(ValueError, match=r"`raw` must end in the calibrated shape \(16, 16\)"):
         calibration.below_rest(np.zeros((4, 4)))
+
+
+def test_a_file_without_a_calibrations_arrays_names_what_it_lacks(tmp_path):
+    path = tmp_path / "other.npz"
+    np.savez(path, a=np.zeros(3))
+    with pytest.raises(ValueError) as refused:
+        Calibration.load(path)
+    assert str(refused.value) == (
+        f"{path}: not a taxel calibration file: it lacks the array(s) felt_fraction, meta, "
+        "noise, pinned, pressures, readings, unresponsive that `taxel calibrate` writes (it "
+        "holds a)"
+    )
+    good = tmp_path / "good.npz"
+    calibrate(make_sensor("capacitive4x4")).save(good)
+    with np.load(good) as stored:
+        arrays = dict(stored)
+    meta = json.loads(str(arrays["meta"]))
+    del meta["repeats"]
+    arrays["meta"] = np.array(json.dumps(meta))
+    np.savez(path, **arrays)
+    with pytest.raises(ValueError, match=r"not a taxel calibration file: its meta lacks repeats$"):
+        Calibration.load(path)

@@ -52,10 +52,15 @@ def reading(flag: str, path: str | os.PathLike[str]) -> Iterator[None]:
     """Errors loading `path` (a --table, --model, ... file) as one line naming `flag`.
 
     The loaders' messages name their parameter, `` `path` ``, or begin with the file's
-    name; here the flag is named.
+    name; here the flag is named. A file that does not exist is said to be missing, after
+    the flag that named it.
     """
     try:
         yield
+    except FileNotFoundError:
+        if Path(path).exists():  # another file is missing (one it refers to): as it is
+            raise
+        raise FileNotFoundError(f"{flag} {path}: no such file") from None
     except ValueError as error:
         message = str(error)
         if message.startswith("`path` "):

@@ -50,7 +50,8 @@ def check_new_file(
     target = Path(path)
     label = name if name.startswith("--") else f"`{name}`"  # a flag, or a parameter
     if suffix is not None and target.suffix.lower() != suffix:
-        raise ValueError(f"{label} must name a {suffix} file, got {str(target)!r}")
+        # as given: Path("") reads as "."
+        raise ValueError(f"{label} must name a {suffix} file, got {os.fspath(path)!r}")
     if not target.parent.is_dir():
         raise ValueError(f"{label} is in a folder that does not exist: {str(target.parent)!r}")
     if target.is_dir():

@@ -30,6 +30,8 @@ if TYPE_CHECKING:
 __all__ = ["Calibration", "check_calibration"]
 
 _FORMAT = "taxel.calibration/1"
+# the arrays a calibration file holds
+_ARRAYS = {"meta", "pressures", "readings", "unresponsive", "pinned", "noise", "felt_fraction"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -304,16 +306,27 @@ class Calibration:
         try:
             with path.open("rb") as handle:  # (each header checked before numpy allocates)
                 arrays = read_npz(handle)
+        except (OSError, ValueError) as error:
+            raise ValueError(f"{path}: not a taxel calibration file ({error})") from None
+        missing = sorted(_ARRAYS - set(arrays))
+        if missing:
+            held = ", ".join(sorted(arrays)) or "no array"
+            raise ValueError(
+                f"{path}: not a taxel calibration file: it lacks the array(s) "
+                f"{', '.join(missing)} that `taxel calibrate` writes (it holds {held})"
+            )
+        try:
             meta = json.loads(str(arrays.pop("meta")))
-        except (OSError, ValueError, KeyError) as error:
+        except ValueError as error:
             raise ValueError(f"{path}: not a taxel calibration file ({error})") from None
         if not isinstance(meta, dict) or meta.get("format") != _FORMAT:
             format_tag = meta.get("format") if isinstance(meta, dict) else None
             raise ValueError(f"{path}: not a taxel calibration file (format {format_tag})")
-        wanted = {"pressures", "readings", "unresponsive", "pinned", "noise", "felt_fraction"}
-        missing = wanted - set(arrays)
-        if missing:
-            raise ValueError(f"{path}: missing array(s) {', '.join(sorted(missing))}")
+        lacking = [key for key in ("sensor_name", "full_scale", "repeats") if key not in meta]
+        if lacking:
+            raise ValueError(
+                f"{path}: not a taxel calibration file: its meta lacks {', '.join(lacking)}"
+            )
         readings, pressures = arrays["readings"], arrays["pressures"]
         shape = readings.shape[1:]
         if readings.ndim < 2 or pressures.shape != readings.shape[:1]:
