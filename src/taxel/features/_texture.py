@@ -140,22 +140,16 @@ def _margin(noise: float, sigma: float, contrast: float) -> np.float32:
     return np.float32(max(_MAXIMUM_SIGMAS * smoothed, 1e-9 * contrast, 1e-30))
 
 
-def _maxima(
-    smooth: np.ndarray,
-    around: np.ndarray,
-    lowest: np.ndarray,
-    mask: np.ndarray,
-    margin: np.float32,
-) -> tuple[np.ndarray, np.ndarray | None]:
-    """The contact's maxima that rise `margin` above the square around them.
+def _standing(heights: np.ndarray, lowest: np.ndarray, margin: np.float32) -> np.ndarray:
+    """Which maxima (their `heights`) rise `margin` above `lowest`, the least of their squares."""
+    return heights > lowest + margin
 
-    Returns them as an image (uint8) and as points (x, y), or None without any. `around`:
-    the largest of each taxel's 8 neighbours; `lowest`: the smallest value of the square.
-    """
-    peaks = (smooth >= around) & (smooth > lowest + margin)
-    peaks = peaks.view(np.uint8) & mask
-    points = cv2.findNonZero(peaks)
-    return peaks, None if points is None else points.reshape(-1, 2)
+
+def _peaks(points: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
+    """An image (uint8) of `shape`: 1 at the points (x, y), 0 elsewhere."""
+    peaks = np.zeros(shape, np.uint8)
+    peaks[points[:, 1], points[:, 0]] = 1
+    return peaks
 
 
 def _ring_test(
@@ -206,12 +200,15 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     c0, c1 = max(left - grow, 0), min(left + width + grow, cols)
     image, mask = prepared.image[r0:r1, c0:c1], prepared.mask[r0:r1, c0:c1]
     smooth = gaussian_blur(image, sigma)
-    lowest = cv2.erode(smooth, _square(2 * math.ceil(radius) + 1))
     # the largest of the 8 neighbours: a maximum is >= it, and equal to it beside another
     around = cv2.dilate(smooth, _AROUND)
+    maxima = cv2.findNonZero((smooth >= around).view(np.uint8) & mask)
+    if maxima is None:
+        return 0, 0.0
+    maxima = maxima.reshape(-1, 2)  # the contact's local maxima (x, y), in raster order
     # the margin is set by the noise inside the contact where it exceeds the image's (a
     # camera's shot noise): the image's alone gives the least margin, and when no maximum
-    # stands out by even that one, above its square and its ring, none is a high point and
+    # stands out by even that one, above its ring and its square, none is a high point and
     # the contact's noise (a median over its taxels) is not needed. (Every maximum is
     # tested, before a plateau is reduced to one taxel: a high point is one of them.) On a
     # small array the median costs less than the second test it may need: taken first.
@@ -220,9 +217,6 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
         contact_noise = _contact_noise(prepared)
     noise = prepared.raw_noise if contact_noise is None else max(contact_noise, prepared.raw_noise)
     margin = _margin(noise, sigma, prepared.contrast)
-    peaks, points = _maxima(smooth, around, lowest, mask, margin)
-    if points is None:
-        return 0, 0.0
     # the ring and the neighbours are read in a copy padded by replication, as clipping
     # each index to the image would, with one flat index per value
     pad, ring_offsets, near_offsets = _padded_offsets(
@@ -230,7 +224,15 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     )
     padded = cv2.copyMakeBorder(smooth, pad, pad, pad, pad, cv2.BORDER_REPLICATE).ravel()
     stride = smooth.shape[1] + 2 * pad
-    centres, heights, high = _ring_test(padded, stride, pad, points, ring_offsets, margin)
+    every = _ring_test(padded, stride, pad, maxima, ring_offsets, margin)
+    if not np.count_nonzero(every[2]):
+        return 0, 0.0  # (no maximum above its ring, as on a ridge: no erosion needed)
+    lowest = cv2.erode(smooth, _square(2 * math.ceil(radius) + 1))[maxima[:, 1], maxima[:, 0]]
+    standing = _standing(every[1], lowest, margin)
+    if not np.count_nonzero(standing):
+        return 0, 0.0
+    points = maxima[standing]
+    centres, heights, high = (values[standing] for values in every)
     if not np.count_nonzero(high):
         return 0, 0.0
     retest = False
@@ -238,9 +240,10 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
         contact_noise = _contact_noise(prepared)
     if contact_noise > noise:
         margin = _margin(contact_noise, sigma, prepared.contrast)
-        peaks, points = _maxima(smooth, around, lowest, mask, margin)
-        if points is None:
+        standing = _standing(every[1], lowest, margin)
+        if not np.count_nonzero(standing):
             return 0, 0.0
+        points = maxima[standing]
         retest = True
     point_rows, point_cols = points[:, 1], points[:, 0]
     # a plateau of equal values is one maximum, not many: one taxel per connected plateau,
@@ -250,7 +253,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
         around[point_rows, point_cols] == smooth[point_rows, point_cols]
     )
     if tied:
-        points = _first_of_each(points, cv2.connectedComponents(peaks)[1])
+        points = _first_of_each(points, cv2.connectedComponents(_peaks(points, smooth.shape))[1])
         point_rows, point_cols = points[:, 1], points[:, 0]
     if tied or retest:
         centres, heights, high = _ring_test(padded, stride, pad, points, ring_offsets, margin)
@@ -273,7 +276,8 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
         # the mean height sums the high points in the order of their plateaus' labels (the
         # rounding depends on it); labelled only now that few points are left
         chosen = np.flatnonzero(high)[peaked]
-        labels = cv2.connectedComponents(peaks)[1][point_rows[chosen], point_cols[chosen]]
+        labels = cv2.connectedComponents(_peaks(points, smooth.shape))[1]
+        labels = labels[point_rows[chosen], point_cols[chosen]]
         heights = heights[np.argsort(labels)]
     return count, mean32(heights) - prepared.baseline
 
