@@ -122,10 +122,8 @@ class Calibration:
             information is lost there); a reading that several pressures share (a flat part
             of the response) returns the middle of them. NaN where `valid` is False.
         """
-        raw = as_finite_array("raw", raw)
+        raw = self._frames(raw)
         shape = self.shape
-        if raw.shape[raw.ndim - len(shape) :] != shape:
-            raise ValueError(f"`raw` must end in the calibrated shape {shape}, got {raw.shape}")
         lead = raw.shape[: raw.ndim - len(shape)]
         taxels = int(np.prod(shape))
         knots = self.direction * self.readings.reshape(len(self.pressures), taxels)
@@ -165,10 +163,7 @@ class Calibration:
         >>> int(calibration.beyond_full_scale(calibration.readings[0]).sum())  # no load
         0
         """
-        raw = as_finite_array("raw", raw)
-        shape = self.shape
-        if raw.shape[raw.ndim - len(shape) :] != shape:
-            raise ValueError(f"`raw` must end in the calibrated shape {shape}, got {raw.shape}")
+        raw = self._frames(raw)
         oriented = self.direction * raw
         full = self.direction * self.readings[-1]
         return (oriented >= full) & self.valid
@@ -202,15 +197,20 @@ class Calibration:
         >>> int(calibration.below_rest(calibration.readings[0]).sum())  # no load
         0
         """
-        raw = as_finite_array("raw", raw)
-        shape = self.shape
-        if raw.shape[raw.ndim - len(shape) :] != shape:
-            raise ValueError(f"`raw` must end in the calibrated shape {shape}, got {raw.shape}")
+        raw = self._frames(raw)
         rest = self.direction * self.readings[0]
         span = self.direction * self.readings[-1] - rest
         typical = np.median(self.noise[self.valid]) if np.any(self.valid) else 0.0
         margin = np.maximum(5 * np.maximum(self.noise, typical), 0.01 * span)
         return (self.direction * raw < rest - margin) & self.valid
+
+    def _frames(self, raw: Any) -> np.ndarray:
+        """`raw` as finite frames whose shape ends in the calibrated one (else ValueError)."""
+        raw = as_finite_array("raw", raw)
+        shape = self.shape
+        if raw.shape[raw.ndim - len(shape) :] != shape:
+            raise ValueError(f"`raw` must end in the calibrated shape {shape}, got {raw.shape}")
+        return raw
 
     @cached_property
     def _rest_slope(self) -> np.ndarray:
