@@ -84,7 +84,7 @@ def test_known_noise_finds_a_texture_that_covers_the_array(tmp_path, capsys):
         ("frame", ["--sensor", "resistive16"], "a 64 x 64 image, but resistive16 frames are 16 x"),
         ("frame", ["--pitch", "1e-3", "--pose", "MISSING"], "--pose MISSING: No such file"),
         ("frame", ["--pitch", "1e-3", "--pose", "BOTH"], "not both"),
-        ("frame", ["--pitch", "1e-3", "--pose", "ZERO"], "--pose ZERO: "),
+        ("frame", ["--pitch", "1e-3", "--pose", "ZERO"], "--pose ZERO: 'quaternion' [0, 0, 0, 0]"),
         ("archive", ["--pitch", "1e-3"], "holds 2 arrays (a, b); choose one with --key"),
         ("archive", ["--pitch", "1e-3", "--key", "c"], "no array named 'c'"),
         ("complex", ["--pitch", "1e-3"], "complex128 data, not real numbers"),
@@ -314,6 +314,41 @@ def test_pose_as_rotation_and_translation(tmp_path, capsys, washer):
     assert again["centroid_base_m"] == contact["centroid_base_m"]
 
 
+@pytest.mark.parametrize(
+    "quaternion", [[0, 0, 1e300, 1e300], [0, 0, 1e-300, 1e-300], [0, 0, 2**-0.5, 2**-0.5]]
+)
+def test_quaternions_of_any_length_give_their_rotation(tmp_path, capsys, washer, quaternion):
+    # a quarter turn about z, however long the quaternion (its squares over- or underflow)
+    frame, pose = tmp_path / "frame.npy", tmp_path / "pose.json"
+    np.save(frame, washer)
+    pose.write_text(json.dumps({"translation": [0, 0, 0], "quaternion": quaternion}))
+    assert main(["features", str(frame), "--pitch", "2.5e-4", "--pose", str(pose), "--json"]) == 0
+    contact = json.loads(capsys.readouterr().out)["contact"]
+    x, y, _ = contact["position_sensor_m"]
+    assert contact["centroid_base_m"] == pytest.approx([-y, x, 0.0], abs=1e-12)
+
+
+@pytest.mark.parametrize(("angle", "code"), [(2.0**33 - 1, 0), (2.0**33, 2), (1e300, 2)])
+def test_a_rotation_vector_longer_than_a_double_holds_is_refused(
+    tmp_path, capsys, washer, angle, code
+):
+    frame, pose = tmp_path / "frame.npy", tmp_path / "pose.json"
+    np.save(frame, washer)
+    pose.write_text(json.dumps({"translation": [0, 0, 0], "rotvec": [0, 0, angle]}))
+    assert main(["features", str(frame), "--pitch", "2.5e-4", "--pose", str(pose)]) == code
+    err = capsys.readouterr().err
+    assert ("'rotvec' has length" in err) == (code == 2)
+
+
+def test_the_table_shows_huge_positions_in_exponent_notation(tmp_path, capsys, washer):
+    frame, pose = tmp_path / "frame.npy", tmp_path / "pose.json"
+    np.save(frame, washer)
+    pose.write_text(json.dumps({"translation": [0, 0, 1e300], "rotvec": [0, 0, 0]}))
+    assert main(["features", str(frame), "--pitch", "2.5e-4", "--pose", str(pose)]) == 0
+    line = next(row for row in capsys.readouterr().out.splitlines() if "base [mm]" in row)
+    assert line.endswith(", 1.000e+303)") and len(line) < 80
+
+
 @pytest.mark.parametrize("suffix", [".npy", ".png"])
 def test_calibrated_refuses_raw_codes(tmp_path, capsys, washer, suffix):
     # an 8-bit camera frame read as pressure gave a "total force" of a few mN
@@ -358,7 +393,7 @@ def test_reference_frame_tares_a_frame_at_rest(tmp_path, capsys):
     [
         (np.zeros((64, 64)), "a 64 x 64 frame, but"),
         (np.full((128, 128), np.inf), "--reference: "),
-        (None, "no such file"),
+        (None, "--reference REFERENCE: no such file"),
     ],
 )
 def test_reference_errors_are_one_line(tmp_path, capsys, content, message):
@@ -368,6 +403,7 @@ def test_reference_errors_are_one_line(tmp_path, capsys, content, message):
     args = ["features", str(tmp_path / "frame.npy"), "--sensor", "vhdta128"]
     assert main([*args, "--reference", str(tmp_path / "reference.npy")]) == 2
     err = capsys.readouterr().err
+    message = message.replace("REFERENCE", str(tmp_path / "reference.npy"))
     assert message in err and len(err.strip().splitlines()) == 1
 
 

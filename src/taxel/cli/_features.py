@@ -12,13 +12,15 @@ from typing import Any
 import numpy as np
 
 from taxel.cli._arguments import positive, positive_in, preset
-from taxel.cli._files import writing
+from taxel.cli._files import reading, writing
 
 __all__ = ["register"]
 
 # taxel.features computes in single precision, where sums of squares of readings above
 # about 1e17 overflow (a RuntimeWarning, then NaN or inf); no sensor reads 1e15 in any unit
 _LARGEST_VALUE = 1e15
+# the table shows larger numbers (a pose's translation, say) in exponent notation
+_LARGEST_FIXED = 1e9
 
 
 def _load_pose(path: Path) -> np.ndarray:
@@ -68,6 +70,33 @@ def _rotation_matrix(data: dict[str, Any]) -> list[list[float]]:
     return value
 
 
+def _unit_quaternion(data: dict[str, Any]) -> list[float]:
+    """``data["quaternion"]`` scaled to unit length, or a ValueError naming the key.
+
+    ``math.hypot`` neither overflows nor underflows where SciPy's norm would (1e300, 1e-300).
+    """
+    quaternion = _numbers(data, "quaternion", 4)
+    norm = math.hypot(*quaternion)
+    if norm == 0.0:
+        raise ValueError("'quaternion' [0, 0, 0, 0] is no rotation: its length must not be 0")
+    return [component / norm for component in quaternion]
+
+
+def _rotation_vector(data: dict[str, Any]) -> list[float]:
+    """``data["rotvec"]`` (axis times angle [rad]), or a ValueError naming the key.
+
+    Refused when a double cannot hold its angle to a microradian (from 2**33, 8.6e9 rad).
+    """
+    vector = _numbers(data, "rotvec", 3)
+    angle = math.hypot(*vector)
+    if math.ulp(angle) > 1e-6:
+        raise ValueError(
+            f"'rotvec' has length {angle:.3g}: its length is the angle in rad, which a "
+            "double cannot hold to 1 urad beyond about 8.6e9 rad"
+        )
+    return vector
+
+
 def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
     """A JSON object as a dict, refusing a key given twice (JSON keeps the last silently)."""
     data: dict[str, Any] = {}
@@ -113,9 +142,9 @@ def _read_pose(path: Path) -> np.ndarray:
         from scipy.spatial.transform import Rotation
 
         if given == ["quaternion"]:
-            rotation = Rotation.from_quat(_numbers(data, "quaternion", 4))  # (x, y, z, w)
+            rotation = Rotation.from_quat(_unit_quaternion(data))  # (x, y, z, w)
         else:
-            rotation = Rotation.from_rotvec(_numbers(data, "rotvec", 3))
+            rotation = Rotation.from_rotvec(_rotation_vector(data))
     return make_pose(rotation, _numbers(data, "translation", 3))
 
 
@@ -126,7 +155,10 @@ def _format(value: Any, scale: float = 1.0, digits: int = 3) -> str:
         return "(" + ", ".join(_format(v, scale, digits) for v in value) + ")"
     if isinstance(value, float) and not math.isfinite(value):
         return "-"
-    text = f"{value * scale:.{digits}f}"
+    shown = value * scale
+    if abs(shown) >= _LARGEST_FIXED:
+        return f"{shown:.{digits}e}"
+    text = f"{shown:.{digits}f}"
     return text.lstrip("-") if float(text) == 0 else text  # never "-0.000"
 
 
@@ -262,10 +294,11 @@ def _load_reference(arguments: argparse.Namespace, shape: tuple[int, ...]) -> np
     """--reference: the unloaded frame (finite, as `read_frame` checks), of the image's shape."""
     from taxel.io import read_frame
 
-    try:
-        reference = read_frame(arguments.reference, as_stored=True)
-    except ValueError as error:
-        raise ValueError(f"--reference: {error}") from None
+    with reading("--reference", arguments.reference):
+        try:
+            reference = read_frame(arguments.reference, as_stored=True)
+        except ValueError as error:
+            raise ValueError(f"--reference: {error}") from None
     if reference.shape != shape:
         raise ValueError(
             f"--reference {arguments.reference}: a {' x '.join(map(str, reference.shape))} "
