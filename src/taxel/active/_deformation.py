@@ -20,7 +20,7 @@ import numpy as np
 from taxel._validation import check_finite, check_instance, check_positive
 from taxel.active._deformable_objects import make_deformation_object, top_height
 from taxel.active._finger import SimulatedFinger
-from taxel.active._imaging import frame_noise, imaging_sensor
+from taxel.active._imaging import background_level, frame_noise, imaging_sensor
 from taxel.active._pad_calibration import PadCalibration, calibrate_pad, core_area
 from taxel.active._probe import Probe, ProbeReading
 from taxel.active._procedure import ProcedureStep, step_from_reading
@@ -183,17 +183,21 @@ class Deformation:
     ) -> tuple[ProbeReading, float, int, float, float]:
         reading = probe.press(normal_force=force)
         sensor = probe.sensor
-        contact = find_contact(reading.frame.raw, sensor, noise=noise)
+        raw = reading.frame.raw
+        # the imprint's outline at a fraction of its contrast over the background itself,
+        # whatever the force (see `background_level`), so that the presses' areas compare
+        level = background_level(prepare(raw, sensor, noise=noise), sensor)
+        contact = find_contact(raw, sensor, noise=noise, baseline=level)
         if not contact.present:
             if touch:  # a broad face at a light touch: too faint to see, too light to matter
                 return reading, 0.0, 0, 0.0, 0.0
             raise ValueError(f"the press at {force:g} N shows no contact in the tactile image")
-        prepared = prepare(reading.frame.raw, sensor, noise=noise)
+        prepared = prepare(raw, sensor, noise=noise, baseline=level)
         excess = np.clip(prepared.smooth - prepared.baseline, 0.0, None)
         mask = prepared.mask.astype(bool)
         intensity = float(excess[mask].mean()) if mask.any() else 0.0
         pixels = round(contact.area_m2 / (sensor.taxel_pitch[0] * sensor.taxel_pitch[1]))
-        core = core_area(reading.frame.raw, sensor)
+        core = core_area(raw, sensor)
         return reading, contact.area_m2, int(pixels), intensity, core
 
     def run(self, probe: Probe) -> DeformationResult:
