@@ -4,7 +4,14 @@ import numpy as np
 import pytest
 
 from taxel.mechanics import ElasticMaterial, hertz_sphere, make_indenter
-from taxel.sensor import PRESET_NAMES, ArrayGeometry, Cover, Readout, make_sensor
+from taxel.sensor import (
+    PRESET_NAMES,
+    ArrayGeometry,
+    Cover,
+    Readout,
+    make_sensor,
+    taxel_fields,
+)
 
 SILICONE = ElasticMaterial(1e6, 0.49)
 
@@ -47,6 +54,18 @@ def test_pressure_cells_feel_the_stress_transmitted_to_their_depth(presets):
     cell = np.prod(sensor.taxel_pitch)
     assert -frame.fields.stress.sum() * cell == pytest.approx(2.0, rel=0.03)
     assert frame.fields.pressure.sum() * cell == pytest.approx(2.0, rel=1e-6)
+
+
+def test_a_frame_computes_the_sensed_field_and_leaves_the_others_nan(presets):
+    # vhdta128's FTIR cells read the stress at their depth; its displacement is not computed
+    sensor = presets["vhdta128"]
+    frame = sensor.press(make_indenter("sphere", radius=5e-3), normal_force=2.0)
+    assert np.isfinite(frame.fields.stress).all() and np.isfinite(frame.fields.pressure).all()
+    assert np.isnan(frame.fields.strain).all() and np.isnan(frame.fields.displacement).all()
+    every = taxel_fields(frame.contact.pressure, sensor.load_grid, sensor.cover)
+    assert np.array_equal(every.stress, frame.fields.stress)
+    assert every.displacement.max() > 0  # the cover gives under the sphere
+    assert np.isfinite(every.strain).all() and every.strain.min() < 0  # compressed
 
 
 def test_contact_on_the_sensor_matches_hertz_when_well_resolved():

@@ -110,7 +110,8 @@ def taxel_fields(
         Surface displacement on the load grid [m] if already known (a contact solve gives
         it); computed from the pressure when needed and not given.
     need : tuple of str
-        Fields to compute; the others are returned as zeros (saves a convolution each).
+        Fields to compute; the others are not computed (each saves a convolution) and are
+        returned as NaN, so that no one takes them for an unloaded field.
 
     Returns
     -------
@@ -125,15 +126,16 @@ def taxel_fields(
             f"`displacement` must be on the sensor's load grid {grid.shape}, got "
             f"{np.shape(displacement)}"
         )
-    zeros = np.zeros(grid.geometry.shape)
+    skipped = np.full(grid.geometry.shape, np.nan)
+    skipped.flags.writeable = False  # shared by the fields not computed
     key = (grid.shape, grid.spacing, cover.depth, cover.material, cover.thickness)
 
     def at_depth(name: str) -> np.ndarray:
         if name not in need:
-            return zeros
+            return skipped
         return grid._means(_depth_operator(name, *key).apply(pressure))
 
-    displacement_means = zeros
+    displacement_means = skipped
     if "displacement" in need:
         if displacement is None:
             operator = _displacement_operator(
@@ -142,7 +144,7 @@ def taxel_fields(
             displacement = operator.apply(pressure)
         displacement_means = grid._means(displacement)
     return TaxelFields(
-        pressure=grid._means(pressure) if "pressure" in need else zeros,
+        pressure=grid._means(pressure) if "pressure" in need else skipped,
         stress=at_depth("stress"),
         strain=at_depth("strain"),
         displacement=displacement_means,

@@ -63,7 +63,9 @@ class SensorFrame:
         The transducer's input at each taxel (its `quantity`, in its `quantity_unit`; None
         if measured).
     fields : TaxelFields or None
-        The mechanical fields at each taxel (None if measured).
+        The mechanical fields at each taxel (None if measured): the surface pressure and
+        the field the transducer senses; the others are NaN, not computed (for all four:
+        ``taxel_fields(frame.contact.pressure, sensor.load_grid, sensor.cover)``).
     contact : ContactResult or None
         The solved contact, when the frame came from pressing an indenter.
 
@@ -241,7 +243,11 @@ class TactileSensor:
             raise ValueError(message) from None
 
     def fields(self, pressure: Any, *, displacement: np.ndarray | None = None) -> TaxelFields:
-        """Mechanical fields at each taxel for a surface pressure on the load grid [Pa]."""
+        """Mechanical fields at each taxel for a surface pressure on the load grid [Pa].
+
+        Only the surface pressure and the field the transducer senses are computed (one
+        convolution each); the others are NaN (`taxel_fields` computes all four).
+        """
         pressure = as_finite_array("pressure", pressure, ndim=2)
         need = (_FIELD_OF_QUANTITY[self.quantity], "pressure")
         if self.quantity == "strain" and self.cell_modulus is not None:
