@@ -260,6 +260,23 @@ def test_no_defects_keeps_a_thin_line_on_a_raw_frame(tmp_path, capsys):
     assert data["contact"]["centroid_index"] == pytest.approx([40.0, 59.5], abs=0.01)
 
 
+def test_an_explicit_defects_flag_says_when_it_erased_the_contact(tmp_path, capsys):
+    # a pen tip on a 2 mm array lights 2 x 2 taxels: --defects takes it for a hot pixel
+    frame = np.random.default_rng(0).normal(1000.0, 5.0, (16, 16))
+    frame[7:9, 7:9] += 3000.0
+    path = tmp_path / "frame.npy"
+    np.save(path, frame)
+    args = ["features", str(path), "--pitch", "2e-3", "--json"]
+    assert main([*args, "--defects"]) == 0
+    captured = capsys.readouterr()
+    assert not json.loads(captured.out)["contact"]["present"]
+    assert "--defects removed the only contact" in captured.err
+    assert "--no-defects keeps it" in captured.err
+    assert main(args) == 0  # by default (no cover known) the spot stays, and no word
+    captured = capsys.readouterr()
+    assert json.loads(captured.out)["contact"]["present"] and captured.err == ""
+
+
 def test_a_4x4_frame_takes_the_presets_noise(tmp_path, capsys):
     # a noise-free 0.5 N sphere on capacitive4x4: 4 taxels at 8371 codes, ~3100 elsewhere
     frame = tmp_path / "cap.npy"

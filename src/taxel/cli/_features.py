@@ -307,6 +307,26 @@ def _load_reference(arguments: argparse.Namespace, shape: tuple[int, ...]) -> np
     return reference
 
 
+def _warn_if_defects_erased(
+    arguments: argparse.Namespace,
+    features: Any,
+    image: np.ndarray,
+    pitch: Any,
+    preparation: dict[str, Any],
+) -> None:
+    """Warn when an explicit --defects removed every contact the image shows without it."""
+    if arguments.defects is not True or features.contact.present:
+        return
+    from taxel.features import find_contact
+
+    if find_contact(image, pitch, **{**preparation, "defects": False}).present:
+        sys.stderr.write(
+            f"taxel features: warning: --defects removed the only contact in "
+            f"{arguments.file} (it removes everything bright narrower than 3 taxels, as a "
+            "scratch or a hot pixel is); --no-defects keeps it\n"
+        )
+
+
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.features import extract
     from taxel.io import read_frame
@@ -367,6 +387,7 @@ def _run(arguments: argparse.Namespace) -> int:
             "stress is about half a fringe, not where it is highest: press lighter\n"
         )
     features = extract(given, pitch, pose=pose, **preparation)
+    _warn_if_defects_erased(arguments, features, given, pitch, preparation)
     if arguments.figure:  # first: a figure that cannot be written stops before any output
         from taxel.viz import plot_features
 
