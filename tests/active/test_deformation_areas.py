@@ -101,3 +101,15 @@ def test_a_ball_on_a_thick_cover_shows_hertz_area():
         assert _radius(contact) == pytest.approx(hertz, rel=0.05)
         assert 0.0 <= _radius(measured) - hertz <= sensor.cover.depth
     assert np.all(np.diff(result.area_pixels) > 0)
+
+
+def test_a_press_past_a_photoelastic_layers_first_fringe_is_refused():
+    # photoelastic64's fringe turns back at about 1 N under a 20 mm steel ball: the imprint
+    # then shrinks as the load grows, and a rigid ball would read as deformable
+    sensor = make_sensor("photoelastic64")
+    calibration = calibrate_pad(sensor, forces=(0.5, 4.0, 12.0), radii=(4e-3, 16e-3, 64e-3))
+    item = make_deformation_object("steel ball")
+    above = make_pose(DOWN, [0.0, 0.0, top_height(item) + 5e-3])
+    finger = SimulatedFinger(sensor, [item], above, rng=0)
+    with pytest.raises(ValueError, match="the press at 4 N takes photoelastic64's reading to"):
+        Deformation(calibration).run(finger)

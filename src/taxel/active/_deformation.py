@@ -184,6 +184,12 @@ class Deformation:
         reading = probe.press(normal_force=force)
         sensor = probe.sensor
         raw = reading.frame.raw
+        if sensor.reaches_turn(raw):  # (a photoelastic layer at its first fringe)
+            raise ValueError(
+                f"the press at {force:g} N takes {sensor.name}'s reading to where it turns "
+                f"back ({sensor.reading_turns_at:.4g}): past it the imprint no longer grows "
+                "with the load, and its area says nothing of the compression; press lighter"
+            )
         # the imprint's outline at a fraction of its contrast over the background itself,
         # whatever the force (see `background_level`), so that the presses' areas compare
         level = background_level(prepare(raw, sensor, noise=noise), sensor)
@@ -201,7 +207,14 @@ class Deformation:
         return reading, contact.area_m2, int(pixels), intensity, core
 
     def run(self, probe: Probe) -> DeformationResult:
-        """Touch, press lightly and firmly, and integrate force, travel and images."""
+        """Touch, press lightly and firmly, and integrate force, travel and images.
+
+        Raises
+        ------
+        ValueError
+            When a press shows no contact or no imprint core, or takes the sensor's reading
+            to where it turns back (a photoelastic layer's first fringe), naming the force.
+        """
         check_instance("probe", probe, Probe)
         sensor = probe.sensor
         if self.calibration.sensor and sensor.name != self.calibration.sensor:
