@@ -5,6 +5,7 @@ import pytest
 from scipy import optimize
 
 from taxel.reconstruction import (
+    ReconstructionResult,
     SupportSolver,
     forward_model_preset,
     nonneg_quadratic,
@@ -198,3 +199,18 @@ def test_the_first_stage_keeps_the_lambda_its_rule_gave():
     gcv = solver.linear.solve(frame, regularization="gcv").regularization
     assert chosen.first_regularization == pytest.approx(gcv, rel=1e-12)
     assert reconstruct(frame, SMALL).first_regularization is None  # one stage: tikhonov
+
+
+def test_a_centre_of_pressure_off_the_grid_is_nan():
+    # a field pulling almost as much as it pushes: halves of +100 and -99.6 kPa put its
+    # centre about 2000 pitches off the 16-pitch map, which means nothing: NaN
+    pressure = np.zeros((2, 16, 16))
+    pressure[:, :, :8] = 100e3
+    pressure[0, :, 8:] = -99.6e3
+    pressure[1, :, 8:] = 50e3  # pressing everywhere: its centre lies on the grid
+    result = ReconstructionResult(
+        pressure, 0.0, "given", "naive", 0, 0.0, 0.0, None, None, spacing=1e-3
+    )
+    assert np.isnan(result.centroid_m[0]).all()
+    x, y = result.centroid_m[1] / result.spacing
+    assert x == pytest.approx((100 * -4 + 50 * 4) / 150) and abs(y) < 1e-9

@@ -133,9 +133,12 @@ class ReconstructionResult:
         """Centre of pressure (x, y) in the sensor frame [m] (per frame for a batch).
 
         The load grid is centred on the array (as `taxel.sensor.LoadGrid.coordinates`).
-        NaN where the total force is not positive. Every cell weighs in with its signed
-        pressure, so the noise of the unloaded cells of a Tikhonov or TSVD map moves it;
-        methods "support" and "nonneg" keep the load on the contact.
+        NaN where the total force is not positive, or where the centre falls off the load
+        grid: a load that presses everywhere has its centre within the contact, so a centre
+        off the grid is that of a signed map whose net force is a small difference of large
+        ones (noise, or a field pulling as much as it pushes), and means nothing. Every cell
+        weighs in with its signed pressure, so the noise of the unloaded cells of a Tikhonov
+        or TSVD map moves it; methods "support" and "nonneg" keep the load on the contact.
 
         Returns
         -------
@@ -160,7 +163,9 @@ class ReconstructionResult:
         centre = np.stack(
             [pressure.sum(axis=-2) @ x / safe, pressure.sum(axis=-1) @ y / safe], axis=-1
         )
-        centre = np.where(positive[..., None], centre, np.nan)
+        half_width = np.array([cols / 2, rows / 2]) * self.spacing  # the grid's edges
+        on_grid = (np.abs(centre) <= half_width).all(axis=-1)
+        centre = np.where((positive & on_grid)[..., None], centre, np.nan)
         if centre.ndim == 1:
             return float(centre[0]), float(centre[1])
         return centre
