@@ -14,6 +14,7 @@ A previous result (the last frame of a press or a slide) warm-starts it.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -107,8 +108,12 @@ def _polonsky_keer(
     approach: float | None,
     tolerance: float,
     max_iterations: int,
+    progress: Callable[[int], object] | None = None,
 ) -> _Loop:
-    """Polonsky & Keer's projected CG on one grid; force- or approach-controlled."""
+    """Polonsky & Keer's projected CG on one grid; force- or approach-controlled.
+
+    `progress`, if given, is called with the iteration's number after each iteration.
+    """
     spectrum = operator._spectrum
     loop = _Loop(pressure=pressure.copy())
     p = loop.pressure
@@ -166,6 +171,8 @@ def _polonsky_keer(
             total = force / cell_area
         loop.iterations = iteration
         loop.residual = float(np.abs(p - old).sum() / total) if total > 0 else 0.0
+        if progress is not None:
+            progress(iteration)
         if loop.residual < tolerance:
             loop.converged = True
             break
@@ -263,6 +270,7 @@ def solve_contact(
     tolerance: float = 1e-8,
     max_iterations: int = 2000,
     initial: ContactResult | None = None,
+    progress: Callable[[int, int], object] | None = None,
 ) -> ContactResult:
     r"""Solve the frictionless normal contact of an indenter with the sensor's cover.
 
@@ -292,6 +300,11 @@ def solve_contact(
         Budget of conjugate-gradient iterations.
     initial : ContactResult, optional
         A previous result on the same grid to start from (the last frame of a sequence).
+    progress : callable, optional
+        Called as ``progress(done, total)`` after each iteration, with ``total`` the budget
+        `max_iterations` and ``done`` the iterations so far (over all windows); a solve
+        that ends before its budget (converged, or nothing to solve) calls it last with
+        ``done = total``. None (the default) reports nothing.
 
     Returns
     -------
@@ -315,6 +328,16 @@ def solve_contact(
     >>> hertz = hertz_sphere(0.1, 10e-3, cover.plane_strain_modulus)
     >>> result.converged, round(result.indentation / hertz.indentation, 2)
     (True, 1.0)
+
+    With a progress callback (a command line draws a bar with it):
+
+    >>> calls = []
+    >>> result = solve_contact(
+    ...     r2 / (2 * 10e-3), 0.1e-3, cover, normal_force=0.1, max_iterations=500,
+    ...     progress=lambda done, total: calls.append((done, total)),
+    ... )
+    >>> calls[0], calls[-1], len(calls) == result.n_iterations + 1
+    ((1, 500), (500, 500), True)
     """
     heights = _check_heights(heights)
     spacing = as_spacing(spacing)
@@ -335,8 +358,12 @@ def solve_contact(
     if initial is not None:
         check_instance("initial", initial, ContactResult)
         check_shape("initial.pressure", initial.pressure, heights.shape)
+    if progress is not None and not callable(progress):
+        raise TypeError(f"`progress` must be a callable (done, total) or None, got {progress!r}")
 
     if not (normal_force or indentation):  # nothing to solve (and F = 0 would divide by 0)
+        if progress is not None:
+            progress(max_iterations, max_iterations)
         return _unloaded(heights.shape, spacing)
     if initial is not None and not initial.normal_force > 0:
         initial = None  # a contact at rest says nothing of the next one (its F would divide)
@@ -365,6 +392,15 @@ def solve_contact(
         window = _window_around(heights <= lowest + 1.2 * (guess - lowest) + 1e-12, margin=2)
 
     iterations, attempts = 0, 0
+    report: Callable[[int], None] | None = None
+    if progress is not None:
+        call = progress
+
+        def _report(done: int) -> None:  # done: of this window's run, after `iterations`
+            call(iterations + done, max_iterations)
+
+        report = _report
+
     total_pressure = np.zeros(shape)
     full_response: np.ndarray | None = None
     while True:
@@ -394,6 +430,7 @@ def solve_contact(
             approach=indentation,
             tolerance=tolerance,
             max_iterations=max_iterations - iterations,
+            progress=report,
         )
         iterations += loop.iterations
         total_pressure[:] = 0.0
@@ -416,6 +453,8 @@ def solve_contact(
         initial = None
         guess = loop.approach
 
+    if progress is not None and iterations < max_iterations:
+        progress(max_iterations, max_iterations)
     if loop.converged:
         message = f"converged in {iterations} iterations ({attempts} window(s))"
     else:
