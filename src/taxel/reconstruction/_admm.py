@@ -16,6 +16,7 @@ majorization: at each step they are given the model's current prediction.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -31,6 +32,7 @@ __all__ = ["ADMMSolver", "ADMMState"]
 
 _ADAPT_EVERY = 10
 _MAX_ADAPTATIONS = 6
+_SECANT_RUNS = 10  # tv: the most values of mu tried in the search for the target residual
 
 
 def gradient(x: np.ndarray) -> np.ndarray:
@@ -69,6 +71,35 @@ class ADMMState:
     primal: float = np.inf
     dual: float = np.inf
     adaptations: int = 0
+
+
+class _Counter:
+    """The iterations of every run of one solve, told to ``progress(done, total)``."""
+
+    def __init__(self, progress: Callable[[int, int], object], total: int) -> None:
+        self.progress, self.total, self.done = progress, total, 0
+
+    def __call__(self, state: ADMMState) -> None:
+        self.done += 1
+        self.progress(self.done, self.total)
+
+    def wrap(self, callback: Callable[[ADMMState], object] | None) -> Callable[..., None]:
+        """A callback that counts, then calls `callback` (if any)."""
+        if callback is None:
+            return self
+        inner = callback
+
+        def both(state: ADMMState) -> None:
+            self(state)
+            inner(state)
+
+        return both
+
+    def finish(self) -> None:
+        """Report the whole budget done (a solve that ended early)."""
+        if self.done < self.total:
+            self.done = self.total
+            self.progress(self.total, self.total)
 
 
 class ADMMSolver:
@@ -239,7 +270,7 @@ class ADMMSolver:
     def _residual(self, frame: np.ndarray, x: np.ndarray) -> float:
         return float(np.linalg.norm((self.operator.apply(x) - frame)[self._live]))
 
-    def _target_residual(self, frame, rule: str, linear, tau: float) -> float:
+    def _target_residual(self, frame, rule: str, linear, tau: float, tick=None) -> float:
         """The data fit TV must reach: tau sigma sqrt(m), or that of nonneg at the rule's lambda.
 
         A linear solution may fit the noise below zero pressure, which no non-negative
@@ -257,7 +288,7 @@ class ADMMSolver:
                 tolerance=self.tolerance,
                 max_iterations=self.max_iterations,
             )
-        state = self._companion.run(frame, float(linear.regularization))
+        state = self._companion.run(frame, float(linear.regularization), callback=tick)
         return self._residual(frame, state.z[-1])
 
     def _solve_tv(self, frame, target: float, initial_guess: float, callback):
@@ -269,7 +300,7 @@ class ADMMSolver:
         history: list[tuple[float, float, ADMMState]] = []
         log_mu, state = np.log(initial_guess), None
         target = max(target, 1e-300)  # no noise at all (an all-zero frame)
-        for _ in range(10):
+        for _ in range(_SECANT_RUNS):
             state = self.run(frame, float(np.exp(log_mu)), initial=state, callback=callback)
             log_r = np.log(max(self._residual(frame, state.x), 1e-300))
             history.append((log_mu, log_r, state))
@@ -299,14 +330,44 @@ class ADMMSolver:
         noise_level: float | None = None,
         tau: float = 1.0,
         callback=None,
+        progress: Callable[[int, int], object] | None = None,
     ) -> ReconstructionResult:
         """Recover non-negative pressure from one frame (rows, cols).
 
         Parameters as `TikhonovSolver.solve`; for "tv" a numeric `regularization` is mu
-        [Pa], the weight of the total variation relative to |A|^2.
+        [Pa], the weight of the total variation relative to |A|^2. `callback(state)` is
+        called after each iteration at the chosen parameter (and at each mu tried);
+        `progress(done, total)` after each iteration of every run, with ``total`` the budget
+        of the whole solve (`max_iterations` per run; tv's search for mu makes up to 10 runs,
+        11 with gcv or lcurve) and ``done = total`` last.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from taxel.reconstruction import forward_model_preset
+        >>> solver = ADMMSolver(forward_model_preset("resistive16", shape=(8, 8)), method="tv")
+        >>> truth = np.zeros((8, 8)); truth[2:5, 3:6] = 40e3
+        >>> calls = []
+        >>> result = solver.solve(
+        ...     solver.operator.apply(truth), regularization=100.0,
+        ...     progress=lambda done, total: calls.append((done, total)),
+        ... )
+        >>> calls[0], calls[-1], len(calls) == result.n_iterations + 1
+        ((1, 1000), (1000, 1000), True)
         """
         frame = one_frame(frame, self.spec, self.method)
         rule, value = parse_regularization(regularization)
+        tick = None
+        if progress is not None:
+            if not callable(progress):
+                raise TypeError(
+                    f"`progress` must be a callable (done, total) or None, got {progress!r}"
+                )
+            runs = 1
+            if self.method == "tv" and rule != "given":
+                runs = _SECANT_RUNS + (rule != "discrepancy")  # gcv, lcurve: a nonneg run
+            tick = _Counter(progress, runs * self.max_iterations)
+            callback = tick.wrap(callback)
         linear = self.linear.solve(
             frame, regularization=regularization, noise_level=noise_level, tau=tau
         )
@@ -322,12 +383,14 @@ class ADMMSolver:
                 parameter = float(value)
                 state = self.run(frame, parameter, callback=callback)
             else:
-                target = self._target_residual(frame, rule, linear, tau)
+                target = self._target_residual(frame, rule, linear, tau, tick)
                 guess = 0.05 * max(float(np.abs(frame).max()), 1e-300)
                 if self.spec.quantity != "stress":
                     guess = 0.05 * float(np.abs(linear.pressure).max()) + 1e-300
                 parameter, state, missed = self._solve_tv(frame, target, guess, callback)
             seminorm = total_variation(state.z[-1])
+        if tick is not None:
+            tick.finish()
         pressure, tv = state.z[-1], self.method == "tv"
         converged = state.primal < self.tolerance and state.dual < self.tolerance
         message = (

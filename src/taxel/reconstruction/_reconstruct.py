@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from functools import lru_cache
 from typing import Any, cast
 
@@ -71,6 +72,7 @@ def reconstruct(
     tau: float = 1.0,
     boundary: str = "auto",
     representation: str = "auto",
+    progress: Callable[[int, int], object] | None = None,
 ) -> ReconstructionResult:
     """Recover the pressure field behind one tactile frame (or a batch, for linear methods).
 
@@ -100,6 +102,10 @@ def reconstruct(
         Safety factor of the discrepancy principle.
     boundary, representation : str
         See `forward_operator`.
+    progress : callable, optional
+        Called as ``progress(done, total)`` by the iterative methods, nonneg and tv, after
+        each iteration (see `ADMMSolver.solve`), ending at ``done = total``; the direct
+        methods do not call it. None (the default) reports nothing.
 
     Returns
     -------
@@ -120,10 +126,30 @@ def reconstruct(
     >>> result = reconstruct(frame, "resistive16", order=1)
     >>> print(f"{result.normal_force:.2f} N of {truth.sum() * 4e-6:.2f} N")
     1.08 N of 1.08 N
+
+    Total variation, with a progress callback (a command line draws a bar with it):
+
+    >>> calls = []
+    >>> result = reconstruct(
+    ...     frame, "resistive16", method="tv",
+    ...     progress=lambda done, total: calls.append((done, total)),
+    ... )
+    >>> calls[0], calls[-1]
+    ((1, 10000), (10000, 10000))
     """
     solver = solver_for(
         sensor, method=method, order=order, boundary=boundary, representation=representation
     )
+    if isinstance(solver, ADMMSolver):
+        return solver.solve(
+            frame,
+            regularization=regularization,
+            noise_level=noise_level,
+            tau=tau,
+            progress=progress,
+        )
+    if progress is not None and not callable(progress):
+        raise TypeError(f"`progress` must be a callable (done, total) or None, got {progress!r}")
     return solver.solve(frame, regularization=regularization, noise_level=noise_level, tau=tau)
 
 
