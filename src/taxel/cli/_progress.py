@@ -1,6 +1,7 @@
 """The progress bars of the long commands, on stderr, drawn by tqdm.
 
-The procedures of `taxel.active` take a ``progress(done, total)`` callback and print
+The procedures of `taxel.active`, the contact solver of `taxel.mechanics` and the iterative
+solvers of `taxel.reconstruction` take a ``progress(done, total)`` callback and print
 nothing; here such a callback drives a bar. It is drawn only when stderr is a terminal
 (tqdm's own default, ``disable=None``), so that a script, a pipe and the tests, which read
 stderr, get no bar, and it never writes to stdout (``--json`` stays clean). The bar is
@@ -9,14 +10,18 @@ erased when its block ends, well or not: an error is then the one line left on s
 
 from __future__ import annotations
 
+import argparse
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Any
 
-__all__ = ["ProgressCallback", "progress_bar"]
+__all__ = ["LONG_RUN", "ProgressCallback", "add_no_progress", "progress_bar"]
 
 ProgressCallback = Callable[[int, int], None]
+
+# [s] the bar of a command that is often quick (simulate, reconstruct) waits this long
+LONG_RUN = 1.0
 
 
 @contextmanager
@@ -26,6 +31,7 @@ def progress_bar(
     *,
     enabled: bool = True,
     before: Callable[[], None] | None = None,
+    delay: float = 0.0,
 ) -> Iterator[ProgressCallback]:
     """A callback ``progress(done, total)`` that shows a bar on stderr while the block runs.
 
@@ -39,6 +45,9 @@ def progress_bar(
         False: the callback does nothing (``--no-progress``).
     before : callable, optional
         Called once, just before the bar first appears (to erase a notice it replaces).
+    delay : float, default 0
+        Seconds after the first call before the bar is drawn: a run that ends sooner leaves
+        no trace (tqdm's ``delay``).
     """
     bar: Any = None
 
@@ -59,6 +68,7 @@ def progress_bar(
                 leave=False,
                 file=sys.stderr,
                 disable=not shown,
+                delay=delay,
             )
         bar.update(done - bar.n)
 
@@ -67,3 +77,13 @@ def progress_bar(
     finally:
         if bar is not None:
             bar.close()
+
+
+def add_no_progress(parser: argparse.ArgumentParser) -> None:
+    """Add ``--no-progress`` (as ``no_progress``) to a command whose bar waits `LONG_RUN`."""
+    parser.add_argument(
+        "--no-progress",
+        action="store_true",
+        help=f"no progress bar (one is drawn on stderr when it is a terminal and the run "
+        f"lasts over {LONG_RUN:g} s)",
+    )

@@ -12,6 +12,7 @@ import numpy as np
 
 from taxel.cli._arguments import integer_in, positive
 from taxel.cli._files import writing
+from taxel.cli._progress import LONG_RUN, add_no_progress, progress_bar
 from taxel.cli._reconstruct_input import load_readings
 
 __all__ = ["register"]
@@ -87,14 +88,19 @@ def _run(arguments: argparse.Namespace) -> int:
                 f"--noise-level must be below the full-scale reading of {arguments.sensor} "
                 f"({spec.full_scale:.4g}{unit}), got {arguments.noise_level:g}"
             ) from None
-    result = reconstruct(
-        frame,
-        spec,
-        method=arguments.method,
-        order=_order(arguments),
-        regularization=arguments.regularization,
-        noise_level=arguments.noise_level,
-    )
+    # only the iterative methods (nonneg, tv) report progress; the others draw no bar
+    with progress_bar(
+        arguments.method, "iteration", enabled=not arguments.no_progress, delay=LONG_RUN
+    ) as progress:
+        result = reconstruct(
+            frame,
+            spec,
+            method=arguments.method,
+            order=_order(arguments),
+            regularization=arguments.regularization,
+            noise_level=arguments.noise_level,
+            progress=progress,
+        )
     centre = result.centroid_m
     second, second_rule = _support_stage(result)
     first = result.regularization if second is None else result.first_regularization
@@ -289,4 +295,5 @@ def register(commands: argparse._SubParsersAction) -> None:
         help="print a JSON summary (SI units; a key's unit is its suffix, as normal_force_n "
         "and centroid_m; the norms are in the readings' and the pressure's own units)",
     )
+    add_no_progress(parser)
     parser.set_defaults(handler=_run)

@@ -33,6 +33,7 @@ from taxel.cli._arguments import (
 )
 from taxel.cli._files import cannot_write
 from taxel.cli._main import CommandLineError
+from taxel.cli._progress import LONG_RUN, add_no_progress, progress_bar
 from taxel.io import check_new_file, write_files
 
 __all__ = ["register"]
@@ -203,6 +204,50 @@ def _warn_if_moved_beyond_full_scale(frame: Any, sensor: Any) -> None:
         )
 
 
+def _press(
+    sensor: Any,
+    indenter: Any,
+    heights: np.ndarray,
+    position: tuple[float, float],
+    arguments: argparse.Namespace,
+) -> Any:
+    """`TactileSensor.press` at --force, its contact solve drawing a bar (a fine grid is slow).
+
+    The steps of ``press`` on the `heights` already found: the solve, then the frame; a
+    frame the transducer refuses is pressed again by ``press`` itself, from the solved
+    contact, for its message in terms of the load.
+    """
+    from taxel.mechanics import solve_contact
+
+    with progress_bar(
+        "contact", "iteration", enabled=not arguments.no_progress, delay=LONG_RUN
+    ) as progress:
+        contact = solve_contact(
+            heights,
+            sensor.load_grid.spacing,
+            sensor.cover.material,
+            normal_force=arguments.force,
+            thickness=sensor.cover.thickness,
+            progress=progress,
+        )
+    try:
+        return sensor.frame_from_pressure(
+            contact.pressure,
+            displacement=contact.displacement,
+            rng=arguments.seed,
+            contact=contact,
+        )
+    except ValueError:
+        return sensor.press(
+            indenter,
+            normal_force=arguments.force,
+            position=position,
+            angle=arguments.angle,
+            initial=contact,
+            rng=arguments.seed,
+        )
+
+
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.mechanics import make_indenter
     from taxel.sensor import make_sensor
@@ -228,13 +273,7 @@ def _run(arguments: argparse.Namespace) -> int:
     if not np.any(np.isfinite(heights)):
         raise _over_no_cell(indenter, sensor, (x, y), arguments)
     try:
-        frame = sensor.press(
-            indenter,
-            normal_force=arguments.force,
-            position=(x, y),
-            angle=arguments.angle,
-            rng=arguments.seed,
-        )
+        frame = _press(sensor, indenter, heights, (x, y), arguments)
     except ValueError as error:  # the library names its parameter; the user gave the flag
         raise ValueError(str(error).replace("`normal_force`", "--force")) from None
     contact = frame.contact
@@ -336,4 +375,5 @@ def register(commands: Any) -> None:
         help="also write pressure, contact and taxel fields (SI units) to this file",
     )
     parser.add_argument("--overwrite", action="store_true", help="replace output files that exist")
+    add_no_progress(parser)
     parser.set_defaults(handler=_run)
