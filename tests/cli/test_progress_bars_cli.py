@@ -97,7 +97,7 @@ def test_the_flag_is_in_the_help(capsys):
 
 
 def test_simulate_writes_what_the_sensor_press_reads(tmp_path):
-    # simulate solves the contact itself (to draw the bar): the frame is press's, bit for bit
+    # with its bar, simulate writes the frame press gives, bit for bit
     import dataclasses
 
     from taxel.mechanics import make_indenter

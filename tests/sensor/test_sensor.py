@@ -265,3 +265,14 @@ def test_a_press_past_the_transducers_end_names_the_load(name, load, match):
     # the transducers refused their own input (`displacement` < unloaded_gap, `strain` > -1)
     with pytest.raises(ValueError, match=match):
         make_sensor(name).press(make_indenter("sphere"), **load)
+
+
+def test_press_reports_the_contact_solves_progress(presets):
+    calls = []
+    sensor = presets["resistive16"]
+    sphere = make_indenter("sphere", radius=5e-3)
+    frame = sensor.press(sphere, normal_force=2.0, progress=lambda *pair: calls.append(pair))
+    iterations = frame.contact.n_iterations
+    assert calls[:iterations] == [(k, 2000) for k in range(1, iterations + 1)]
+    assert calls[-1] == (2000, 2000)  # converged early: the last call says done
+    assert np.array_equal(frame.raw, sensor.press(sphere, normal_force=2.0).raw)

@@ -204,50 +204,6 @@ def _warn_if_moved_beyond_full_scale(frame: Any, sensor: Any) -> None:
         )
 
 
-def _press(
-    sensor: Any,
-    indenter: Any,
-    heights: np.ndarray,
-    position: tuple[float, float],
-    arguments: argparse.Namespace,
-) -> Any:
-    """`TactileSensor.press` at --force, its contact solve drawing a bar (a fine grid is slow).
-
-    The steps of ``press`` on the `heights` already found: the solve, then the frame; a
-    frame the transducer refuses is pressed again by ``press`` itself, from the solved
-    contact, for its message in terms of the load.
-    """
-    from taxel.mechanics import solve_contact
-
-    with progress_bar(
-        "contact", "iteration", enabled=not arguments.no_progress, delay=LONG_RUN
-    ) as progress:
-        contact = solve_contact(
-            heights,
-            sensor.load_grid.spacing,
-            sensor.cover.material,
-            normal_force=arguments.force,
-            thickness=sensor.cover.thickness,
-            progress=progress,
-        )
-    try:
-        return sensor.frame_from_pressure(
-            contact.pressure,
-            displacement=contact.displacement,
-            rng=arguments.seed,
-            contact=contact,
-        )
-    except ValueError:
-        return sensor.press(
-            indenter,
-            normal_force=arguments.force,
-            position=position,
-            angle=arguments.angle,
-            initial=contact,
-            rng=arguments.seed,
-        )
-
-
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.mechanics import make_indenter
     from taxel.sensor import make_sensor
@@ -273,7 +229,18 @@ def _run(arguments: argparse.Namespace) -> int:
     if not np.any(np.isfinite(heights)):
         raise _over_no_cell(indenter, sensor, (x, y), arguments)
     try:
-        frame = _press(sensor, indenter, heights, (x, y), arguments)
+        # the contact solve draws a bar once it has run LONG_RUN (a fine grid is slow)
+        with progress_bar(
+            "contact", "iteration", enabled=not arguments.no_progress, delay=LONG_RUN
+        ) as progress:
+            frame = sensor.press(
+                indenter,
+                normal_force=arguments.force,
+                position=(x, y),
+                angle=arguments.angle,
+                rng=arguments.seed,
+                progress=progress,
+            )
     except ValueError as error:  # the library names its parameter; the user gave the flag
         raise ValueError(str(error).replace("`normal_force`", "--force")) from None
     contact = frame.contact

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, cast
@@ -182,6 +183,7 @@ class TactileSensor:
         indenter_material: ElasticMaterial | None = None,
         initial: ContactResult | None = None,
         rng: Any = None,
+        progress: Callable[[int, int], None] | None = None,
     ) -> SensorFrame:
         """Press an indenter on the sensor and read one frame.
 
@@ -200,6 +202,9 @@ class TactileSensor:
             The previous frame's contact, to warm-start the solver.
         rng : numpy.random.Generator or int, optional
             Switches the noise on (reproducibly); None gives the noise-free frame.
+        progress : callable, optional
+            ``progress(done, total)``, called by the contact solve after each iteration (see
+            `taxel.mechanics.solve_contact`); a fine load grid makes it slow.
 
         Returns
         -------
@@ -225,6 +230,7 @@ class TactileSensor:
             indenter_material=indenter_material,
             thickness=self.cover.thickness,
             initial=initial,
+            progress=progress,
         )
         try:
             return self.frame_from_pressure(
