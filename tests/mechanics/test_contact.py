@@ -287,3 +287,18 @@ def test_a_single_row_or_column_of_cells_is_solved(shape):
     # a flat row pressed down all along: every cell carries load, symmetrically
     assert np.all(result.pressure > 0)
     assert np.allclose(result.pressure, result.pressure[::-1, ::-1], rtol=1e-6)
+
+
+@pytest.mark.parametrize(
+    ("load", "match"),
+    [
+        ({"normal_force": 1e300}, "`normal_force` 1e\\+300 N is too large to solve"),
+        ({"indentation": 1e300}, "`indentation` 1e\\+300 m is too large to solve"),
+    ],
+)
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")  # the overflow on the way
+def test_a_load_whose_pressure_overflows_is_refused_by_name(load, match):
+    # a NaN pressure field came back silently, and a sensor then blamed `pressure`
+    heights = Sphere(RADIUS).on_grid((32, 32), SPACING)
+    with pytest.raises(ValueError, match=match):
+        solve_contact(heights, SPACING, COVER, **load)

@@ -311,6 +311,12 @@ def solve_contact(
     ContactResult
         Not converging is reported by ``converged=False``, not raised.
 
+    Raises
+    ------
+    ValueError
+        For bad arguments, naming the parameter, and for a load so large (1e300 N) that the
+        pressure overflows a double.
+
     Notes
     -----
     Polonsky & Keer's projected conjugate gradient; the gap operator is the exact linear
@@ -455,6 +461,10 @@ def solve_contact(
 
     if progress is not None and iterations < max_iterations:
         progress(max_iterations, max_iterations)
+    if not np.isfinite(total_pressure).all():  # a load past what a double holds (1e300 N)
+        load = f"`normal_force` {normal_force:g} N" if normal_force is not None else ""
+        load = load or f"`indentation` {indentation:g} m"
+        raise ValueError(f"{load} is too large to solve: the contact's pressure overflows")
     if loop.converged:
         message = f"converged in {iterations} iterations ({attempts} window(s))"
     else:
