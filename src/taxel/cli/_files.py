@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import os
-import sys
 from collections.abc import Callable, Iterator, Mapping
-from contextlib import contextmanager
+from contextlib import AbstractContextManager, contextmanager
 from pathlib import Path
 from typing import Any
 
 from taxel.cli._main import CommandLineError
-from taxel.cli._progress import ProgressCallback, progress_bar
+from taxel.cli._progress import ProgressCallback, announced
 
 __all__ = ["building", "cannot_write", "file_or_build", "reading", "writing"]
 
@@ -70,33 +69,14 @@ def reading(flag: str, path: str | os.PathLike[str]) -> Iterator[None]:
         raise
 
 
-def _erase_line() -> None:
-    sys.stderr.write("\r\x1b[K")  # back to the line's start, and clear it
-    sys.stderr.flush()
+def building(
+    what: str, unit: str = "press", *, bar: bool = True
+) -> AbstractContextManager[ProgressCallback]:
+    """`announced` for a build: "building the `what` (this takes a while) ..." on a terminal.
 
-
-@contextmanager
-def building(what: str, unit: str = "press", *, bar: bool = True) -> Iterator[ProgressCallback]:
-    """Say on a terminal that the `what` is being built while it is; erase it after.
-
-    A build takes seconds to minutes, so a user at a terminal is told why nothing happens.
-    The block gets a ``progress(done, total)`` callback for the build: at its first call
-    a progress bar counting `unit` replaces the notice (unless `bar` is False, as with
-    ``--no-progress``; see `progress_bar`). The line is erased when the build ends, well
-    or not: an error in the build, or in the procedure after it, is then the one line left
-    on stderr, as for any error; a script reading stderr (not a terminal) gets no such
-    line at all.
+    Returns the context manager, whose block gets the build's ``progress(done, total)``.
     """
-    shown = sys.stderr.isatty()
-    if shown:  # (short, so that it fits on one line of a terminal and erases whole)
-        sys.stderr.write(f"building the {what} (this takes a while) ...")
-        sys.stderr.flush()
-    try:
-        with progress_bar(f"building the {what}", unit, enabled=bar, before=_erase_line) as update:
-            yield update
-    finally:
-        if shown:
-            _erase_line()
+    return announced(f"building the {what}", f"building the {what}", unit, bar=bar)
 
 
 def file_or_build(

@@ -16,7 +16,7 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Any
 
-__all__ = ["LONG_RUN", "ProgressCallback", "add_no_progress", "progress_bar"]
+__all__ = ["LONG_RUN", "ProgressCallback", "add_no_progress", "announced", "progress_bar"]
 
 ProgressCallback = Callable[[int, int], None]
 
@@ -77,6 +77,37 @@ def progress_bar(
     finally:
         if bar is not None:
             bar.close()
+
+
+def _erase_line() -> None:
+    sys.stderr.write("\r\x1b[K")  # back to the line's start, and clear it
+    sys.stderr.flush()
+
+
+@contextmanager
+def announced(
+    notice: str, description: str, unit: str, *, bar: bool = True
+) -> Iterator[ProgressCallback]:
+    """Say on a terminal what takes a while while it runs; erase it after.
+
+    A long step (a build, a fine grid's solve) can run for seconds before its first
+    iteration, so a user at a terminal is told why nothing happens. The block gets a
+    ``progress(done, total)`` callback: at its first call a bar labelled `description`,
+    counting `unit`, replaces the notice (unless `bar` is False, as with ``--no-progress``;
+    see `progress_bar`). The line is erased when the block ends, well or not: an error is
+    then the one line left on stderr, as for any error; a script reading stderr (not a
+    terminal) gets no such line at all.
+    """
+    shown = sys.stderr.isatty()
+    if shown:  # (short, so that it fits on one line of a terminal and erases whole)
+        sys.stderr.write(f"{notice} (this takes a while) ...")
+        sys.stderr.flush()
+    try:
+        with progress_bar(description, unit, enabled=bar, before=_erase_line) as update:
+            yield update
+    finally:
+        if shown:
+            _erase_line()
 
 
 def add_no_progress(parser: argparse.ArgumentParser) -> None:
