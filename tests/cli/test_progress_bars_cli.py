@@ -55,7 +55,7 @@ def test_a_terminal_sees_the_bar_and_stdout_is_unchanged(
     assert plain.err == ""
     terminal = _Terminal()
     monkeypatch.setattr("sys.stderr", terminal)
-    monkeypatch.setattr(f"taxel.cli._{command}.LONG_RUN", 0.0)  # draw it at once
+    monkeypatch.setattr("taxel.cli._progress.LONG_RUN", 0.0)  # draw it at once
     assert main(argv) == 0
     assert capsys.readouterr().out == plain.out  # the same report, nothing else
     shown = terminal.getvalue()
@@ -82,26 +82,24 @@ def test_a_quick_run_leaves_no_trace_on_a_terminal(
     assert terminal.getvalue() == ""
 
 
-def test_a_fine_grid_is_announced_before_its_kernels_are_built(monkeypatch, tmp_path):
+def test_a_fine_grid_is_announced_before_its_set_up(monkeypatch, tmp_path):
     # resistive16 at --oversampling 2 is a 32 x 32 grid: taken here for a fine one
-    monkeypatch.setattr("taxel.cli._simulate._SLOW_GRID", 32 * 32)
+    monkeypatch.setattr("taxel.cli._progress.SLOW_GRID", 32 * 32)
     terminal = _Terminal()
     monkeypatch.setattr("sys.stderr", terminal)
     assert main(_simulate(tmp_path)) == 0
     shown = terminal.getvalue()
-    assert shown.startswith("pressing on a 32 x 32 load grid (this takes a while) ...\r\x1b[K")
+    assert shown.startswith("solving on a 32 x 32 load grid (this takes a while) ...\r\x1b[K")
     assert "contact: " in shown and shown.endswith("\r\x1b[K") and "\n" not in shown
     terminal.seek(0)
     terminal.truncate()
     assert main([*_simulate(tmp_path), "--no-progress"]) == 0  # the notice, no bar
-    assert (
-        terminal.getvalue() == "pressing on a 32 x 32 load grid (this takes a while) ...\r\x1b[K"
-    )
+    assert terminal.getvalue() == "solving on a 32 x 32 load grid (this takes a while) ...\r\x1b[K"
 
 
 def test_no_terminal_no_bar(capsys, tmp_path, monkeypatch):
     # stderr not a terminal (a pipe, a log, these tests): no bar even at once
-    monkeypatch.setattr("taxel.cli._simulate.LONG_RUN", 0.0)
+    monkeypatch.setattr("taxel.cli._progress.LONG_RUN", 0.0)
     assert main(_simulate(tmp_path)) == 0
     assert capsys.readouterr().err == ""
 

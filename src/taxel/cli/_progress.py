@@ -13,15 +13,25 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from contextlib import AbstractContextManager, contextmanager
 from typing import Any
 
-__all__ = ["LONG_RUN", "ProgressCallback", "add_no_progress", "announced", "progress_bar"]
+__all__ = [
+    "LONG_RUN",
+    "ProgressCallback",
+    "add_no_progress",
+    "announced",
+    "progress_bar",
+    "solving_on",
+]
 
 ProgressCallback = Callable[[int, int], None]
 
 # [s] the bar of a command that is often quick (simulate, reconstruct) waits this long
 LONG_RUN = 1.0
+# load grids of this many cells (512 x 512: vhdta128 at --oversampling 4) or more take
+# seconds to set up before a solver's first iteration (their kernels, a minute at 2048^2)
+SLOW_GRID = 512 * 512
 
 
 @contextmanager
@@ -108,6 +118,21 @@ def announced(
     finally:
         if shown:
             _erase_line()
+
+
+def solving_on(
+    shape: tuple[int, int], description: str, *, bar: bool = True
+) -> AbstractContextManager[ProgressCallback]:
+    """The bar of a solve on a load grid of `shape`, as a context manager giving its callback.
+
+    Drawn once the solve has run `LONG_RUN`; on a grid of `SLOW_GRID` cells or more, whose
+    set-up takes seconds before the first iteration, after a notice shown at once.
+    """
+    rows, cols = shape
+    if rows * cols >= SLOW_GRID:
+        notice = f"solving on a {rows} x {cols} load grid"
+        return announced(notice, description, "iteration", bar=bar)
+    return progress_bar(description, "iteration", enabled=bar, delay=LONG_RUN)
 
 
 def add_no_progress(parser: argparse.ArgumentParser) -> None:

@@ -12,7 +12,7 @@ import numpy as np
 
 from taxel.cli._arguments import integer_in, positive
 from taxel.cli._files import writing
-from taxel.cli._progress import LONG_RUN, add_no_progress, progress_bar
+from taxel.cli._progress import add_no_progress, solving_on
 from taxel.cli._reconstruct_input import load_readings
 
 __all__ = ["register"]
@@ -89,9 +89,7 @@ def _run(arguments: argparse.Namespace) -> int:
                 f"({spec.full_scale:.4g}{unit}), got {arguments.noise_level:g}"
             ) from None
     # only the iterative methods (nonneg, tv) report progress; the others draw no bar
-    with progress_bar(
-        arguments.method, "iteration", enabled=not arguments.no_progress, delay=LONG_RUN
-    ) as progress:
+    with solving_on(spec.load_shape, arguments.method, bar=not arguments.no_progress) as progress:
         result = reconstruct(
             frame,
             spec,

@@ -15,7 +15,6 @@ import dataclasses
 import json
 import sys
 from collections.abc import Callable
-from contextlib import AbstractContextManager
 from pathlib import Path
 from typing import Any
 
@@ -34,20 +33,10 @@ from taxel.cli._arguments import (
 )
 from taxel.cli._files import cannot_write
 from taxel.cli._main import CommandLineError
-from taxel.cli._progress import (
-    LONG_RUN,
-    ProgressCallback,
-    add_no_progress,
-    announced,
-    progress_bar,
-)
+from taxel.cli._progress import add_no_progress, solving_on
 from taxel.io import check_new_file, write_files
 
 __all__ = ["register"]
-
-# load grids of this many cells (512 x 512: vhdta128 at --oversampling 4) or more take a few
-# seconds (about 70 s at 2048 x 2048) to build their kernels and read their taxels
-_SLOW_GRID = 512 * 512
 
 _LARGEST_OVERSAMPLING = 16  # --oversampling's bound
 
@@ -215,22 +204,6 @@ def _warn_if_moved_beyond_full_scale(frame: Any, sensor: Any) -> None:
         )
 
 
-def _pressing(
-    sensor: Any, arguments: argparse.Namespace
-) -> AbstractContextManager[ProgressCallback]:
-    """The bar of the contact solve, as a context manager giving its callback.
-
-    Drawn once the solve has run `LONG_RUN`; on a load grid so fine that its kernels take
-    seconds to build before the first iteration, after a notice shown at once.
-    """
-    rows, cols = sensor.load_grid.shape
-    bar = not arguments.no_progress
-    if rows * cols >= _SLOW_GRID:
-        notice = f"pressing on a {rows} x {cols} load grid"
-        return announced(notice, "contact", "iteration", bar=bar)
-    return progress_bar("contact", "iteration", enabled=bar, delay=LONG_RUN)
-
-
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.mechanics import make_indenter
     from taxel.sensor import make_sensor
@@ -256,7 +229,8 @@ def _run(arguments: argparse.Namespace) -> int:
     if not np.any(np.isfinite(heights)):
         raise _over_no_cell(indenter, sensor, (x, y), arguments)
     try:
-        with _pressing(sensor, arguments) as progress:
+        bar = not arguments.no_progress
+        with solving_on(sensor.load_grid.shape, "contact", bar=bar) as progress:
             frame = sensor.press(
                 indenter,
                 normal_force=arguments.force,
