@@ -75,3 +75,20 @@ def hold():
     from taxel.active import SlipScenario, simulate_slip
 
     return simulate_slip(SlipScenario(kind="hold", load_time=0.0, seed=3))
+
+
+@pytest.fixture
+def frame_file(tmp_path):
+    """A resistive16 reading of a 3 x 3 taxel 40 kPa load with 1 kPa of noise, saved as .npy
+    (for ``taxel reconstruct``)."""
+    import numpy as np  # (here: the thread settings above come before NumPy loads BLAS)
+
+    from taxel.reconstruction import forward_operator
+
+    truth = np.zeros((16, 16))
+    truth[5:8, 6:9] = 40e3
+    frame = forward_operator("resistive16").apply(truth)
+    frame += np.random.default_rng(0).normal(0, 1e3, frame.shape)
+    path = tmp_path / "frame.npy"
+    np.save(path, frame)
+    return path

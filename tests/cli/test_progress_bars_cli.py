@@ -6,23 +6,11 @@ import numpy as np
 import pytest
 
 from taxel.cli import main
-from taxel.reconstruction import forward_operator
 
 
 class _Terminal(io.StringIO):
     def isatty(self) -> bool:
         return True
-
-
-@pytest.fixture
-def frame_file(tmp_path):
-    truth = np.zeros((16, 16))
-    truth[5:8, 6:9] = 40e3
-    frame = forward_operator("resistive16").apply(truth)
-    frame += np.random.default_rng(0).normal(0, 1e3, frame.shape)
-    path = tmp_path / "frame.npy"
-    np.save(path, frame)
-    return path
 
 
 def _simulate(tmp_path):
