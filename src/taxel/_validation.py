@@ -8,6 +8,7 @@ The command line turns these into one-line messages and exit code 2.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -22,6 +23,7 @@ __all__ = [
     "check_instance",
     "check_pair",
     "check_positive",
+    "check_progress",
     "check_range",
     "check_shape",
     "refuse_complex",
@@ -187,6 +189,18 @@ def check_instance(name: str, value: Any, kind: type) -> None:
     if not isinstance(value, kind):
         article = "an" if kind.__name__[0] in "AEIOU" else "a"
         raise TypeError(f"`{name}` must be {article} {kind.__name__}, got {_short(value)}")
+
+
+def check_progress(
+    progress: Callable[[int, int], object] | None,
+) -> Callable[[int, int], object] | None:
+    """`progress` itself when it is None or callable; else a TypeError naming it.
+
+    `progress` is the ``progress(done, total)`` callback of a long computation.
+    """
+    if progress is not None and not callable(progress):
+        raise TypeError(f"`progress` must be a callable (done, total) or None, got {progress!r}")
+    return progress
 
 
 def as_rng(name: str, rng: Any, *, allow_none: bool = True) -> np.random.Generator | None:

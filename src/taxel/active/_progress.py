@@ -11,13 +11,8 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from taxel._validation import check_progress
+
 __all__ = ["Progress", "check_progress"]
 
 Progress = Callable[[int, int], object]
-
-
-def check_progress(progress: Progress | None) -> Progress | None:
-    """`progress` itself when it is None or callable; else a TypeError naming it."""
-    if progress is not None and not callable(progress):
-        raise TypeError(f"`progress` must be a callable (done, total) or None, got {progress!r}")
-    return progress

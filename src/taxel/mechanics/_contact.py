@@ -25,6 +25,7 @@ from taxel._validation import (
     check_flag,
     check_instance,
     check_positive,
+    check_progress,
     check_shape,
 )
 from taxel.mechanics._compliance import cover_operator, gap_operator, window_to_grid
@@ -364,8 +365,7 @@ def solve_contact(
     if initial is not None:
         check_instance("initial", initial, ContactResult)
         check_shape("initial.pressure", initial.pressure, heights.shape)
-    if progress is not None and not callable(progress):
-        raise TypeError(f"`progress` must be a callable (done, total) or None, got {progress!r}")
+    check_progress(progress)
 
     if not (normal_force or indentation):  # nothing to solve (and F = 0 would divide by 0)
         if progress is not None:
@@ -462,8 +462,10 @@ def solve_contact(
     if progress is not None and iterations < max_iterations:
         progress(max_iterations, max_iterations)
     if not np.isfinite(total_pressure).all():  # a load past what a double holds (1e300 N)
-        load = f"`normal_force` {normal_force:g} N" if normal_force is not None else ""
-        load = load or f"`indentation` {indentation:g} m"
+        if normal_force is not None:
+            load = f"`normal_force` {normal_force:g} N"
+        else:
+            load = f"`indentation` {indentation:g} m"
         raise ValueError(f"{load} is too large to solve: the contact's pressure overflows")
     if loop.converged:
         message = f"converged in {iterations} iterations ({attempts} window(s))"

@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_positive
+from taxel._validation import check_positive, check_progress
 from taxel.reconstruction._frames import one_frame, parse_regularization
 from taxel.reconstruction._result import ReconstructionResult
 from taxel.reconstruction._spectral import DenseSpectrum
@@ -359,10 +359,7 @@ class ADMMSolver:
         rule, value = parse_regularization(regularization)
         tick = None
         if progress is not None:
-            if not callable(progress):
-                raise TypeError(
-                    f"`progress` must be a callable (done, total) or None, got {progress!r}"
-                )
+            check_progress(progress)
             runs = 1
             if self.method == "tv" and rule != "given":
                 runs = _SECANT_RUNS + (rule != "discrepancy")  # gcv, lcurve: a nonneg run

@@ -6,7 +6,7 @@ from collections.abc import Callable
 from functools import lru_cache
 from typing import Any, cast
 
-from taxel._validation import check_choice
+from taxel._validation import check_choice, check_progress
 from taxel.reconstruction._admm import ADMMSolver
 from taxel.reconstruction._result import ReconstructionResult
 from taxel.reconstruction._spec import ForwardModelSpec, as_forward_model_spec
@@ -148,8 +148,7 @@ def reconstruct(
             tau=tau,
             progress=progress,
         )
-    if progress is not None and not callable(progress):
-        raise TypeError(f"`progress` must be a callable (done, total) or None, got {progress!r}")
+    check_progress(progress)
     return solver.solve(frame, regularization=regularization, noise_level=noise_level, tau=tau)
 
 
