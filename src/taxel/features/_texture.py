@@ -75,12 +75,16 @@ class Texture:
 
 
 @lru_cache(maxsize=64)
-def _padded_offsets(radius: float, step: int, width: int) -> tuple[int, np.ndarray, np.ndarray]:
-    """Padding, and flat offsets of the ring and of the curvatures' neighbours (cached).
+def _padded_offsets(
+    radius: float, step: int, width: int
+) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
+    """Padding, flat offsets of the ring and of the curvatures' neighbours, flat place (cached).
 
     The ring at `radius` has `_RING_POINTS` points; the eight neighbours lie `step` away
     (E, W, S, N, SE, SW, NE, NW). Offsets are into an image `width` columns wide padded by
     the returned number of taxels on every side, flattened; each is a read-only (1, n) row.
+    The place is the read-only column (1, row length): points (x, y) times it are their
+    flat indices less the padding's (see `_ring_test`).
     """
     angles = np.arange(_RING_POINTS) * (2 * math.pi / _RING_POINTS)
     ring_rows = np.rint(radius * np.sin(angles)).astype(np.intp)
@@ -91,8 +95,9 @@ def _padded_offsets(radius: float, step: int, width: int) -> tuple[int, np.ndarr
     stride = width + 2 * pad
     ring = (ring_rows * stride + ring_cols)[None, :]
     near = (near_rows * stride + near_cols)[None, :]
-    ring.flags.writeable = near.flags.writeable = False
-    return pad, ring, near
+    place = np.array([[1], [stride]], np.intp)
+    ring.flags.writeable = near.flags.writeable = place.flags.writeable = False
+    return pad, ring, near, place
 
 
 def _square(size: int) -> np.ndarray:
@@ -154,7 +159,7 @@ def _peaks(points: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
 
 def _ring_test(
     padded: np.ndarray,
-    stride: int,
+    place: np.ndarray,
     pad: int,
     points: np.ndarray,
     ring_offsets: np.ndarray,
@@ -163,10 +168,12 @@ def _ring_test(
     """Which points stand `margin` above every point of their ring.
 
     `padded`: the smoothed image padded by `pad` taxels on every side, flattened, its rows
-    `stride` long. Returns the points' flat indices into it (as a column), their heights,
-    and the test's answers.
+    ``place[1, 0]`` long (`place`: see `_padded_offsets`). Returns the points' flat indices
+    into it (as a column), their heights, and the test's answers.
     """
-    centres = ((points[:, 1] + pad) * stride + (points[:, 0] + pad))[:, None]
+    # (y + pad) stride + x + pad, in one product (whole numbers: exact in any order)
+    centres = points @ place
+    centres += pad * (int(place[1, 0]) + 1)
     heights = padded.take(centres[:, 0])
     ring = padded.take(centres + ring_offsets)
     return centres, heights, heights > np.maximum.reduce(ring, axis=1) + margin
@@ -219,12 +226,11 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     margin = _margin(noise, sigma, prepared.contrast)
     # the ring and the neighbours are read in a copy padded by replication, as clipping
     # each index to the image would, with one flat index per value
-    pad, ring_offsets, near_offsets = _padded_offsets(
+    pad, ring_offsets, near_offsets, place = _padded_offsets(
         radius, max(int(round(sigma)), 1), smooth.shape[1]
     )
     padded = cv2.copyMakeBorder(smooth, pad, pad, pad, pad, cv2.BORDER_REPLICATE).ravel()
-    stride = smooth.shape[1] + 2 * pad
-    every = _ring_test(padded, stride, pad, maxima, ring_offsets, margin)
+    every = _ring_test(padded, place, pad, maxima, ring_offsets, margin)
     if not np.count_nonzero(every[2]):
         return 0, 0.0  # (no maximum above its ring, as on a ridge: no erosion needed)
     lowest = cv2.erode(smooth, _square(2 * math.ceil(radius) + 1))[maxima[:, 1], maxima[:, 0]]
@@ -256,7 +262,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
         points = _first_of_each(points, cv2.connectedComponents(_peaks(points, smooth.shape))[1])
         point_rows, point_cols = points[:, 1], points[:, 0]
     if tied or retest:
-        centres, heights, high = _ring_test(padded, stride, pad, points, ring_offsets, margin)
+        centres, heights, high = _ring_test(padded, place, pad, points, ring_offsets, margin)
         if not np.count_nonzero(high):
             return 0, 0.0
     # principal curvatures by central differences one sigma each way, on the points that
