@@ -141,5 +141,6 @@ def add_no_progress(parser: argparse.ArgumentParser) -> None:
         "--no-progress",
         action="store_true",
         help=f"no progress bar (one is drawn on stderr when it is a terminal and the run "
-        f"lasts over {LONG_RUN:g} s)",
+        f"lasts over {LONG_RUN:g} s; on a load grid of {SLOW_GRID:,} cells or more a notice "
+        "comes first, at once, and stays)",
     )
