@@ -113,6 +113,32 @@ def _cell_average(
     return total * dx * dy / 4.0
 
 
+def _by_symmetry(
+    kernel_of: Callable[[np.ndarray, np.ndarray], np.ndarray], y: np.ndarray, x: np.ndarray
+) -> np.ndarray:
+    """``kernel_of(y, x)``, on offsets symmetric about 0 computed for y, x >= 0 and mirrored.
+
+    A cell centred at 0 and a response that depends on the distance alone make every
+    kernel even in y and in x: on the offsets -(n-1) .. (n-1) of a linear convolution
+    (`y` a column, `x` a row) a quarter of the points gives them all, which a fine grid's
+    kernels, seconds to a minute to build, need. Other offsets are computed as given.
+    """
+    column, row = np.ravel(y), np.ravel(x)
+    symmetric = (
+        np.shape(y) == (column.size, 1)
+        and np.shape(x) == (1, row.size)
+        and column.size % 2 == 1
+        and row.size % 2 == 1
+        and np.array_equal(column, -column[::-1])
+        and np.array_equal(row, -row[::-1])
+    )
+    if not symmetric:
+        return kernel_of(y, x)
+    quadrant = kernel_of(y[column.size // 2 :], x[:, row.size // 2 :])
+    half = np.concatenate([quadrant[:0:-1], quadrant], axis=0)
+    return np.concatenate([half[:, :0:-1], half], axis=1)
+
+
 def displacement_kernel(
     y: np.ndarray,
     x: np.ndarray,
@@ -122,6 +148,19 @@ def displacement_kernel(
     thickness: float | None = None,
 ) -> np.ndarray:
     """Surface displacement at (y, x) per unit pressure on the cell centred at 0 [m/Pa]."""
+    return _by_symmetry(
+        lambda y, x: _displacement_kernel(y, x, spacing, material, thickness), y, x
+    )
+
+
+def _displacement_kernel(
+    y: np.ndarray,
+    x: np.ndarray,
+    spacing: tuple[float, float],
+    material: ElasticMaterial,
+    thickness: float | None,
+) -> np.ndarray:
+    """`displacement_kernel` at every (y, x) given."""
     dy, dx = spacing
     halfspace = rectangle_displacement(x, y, dx / 2, dy / 2, material)
     if thickness is None:
@@ -182,6 +221,21 @@ def depth_kernel(
     thickness: float | None = None,
 ) -> np.ndarray:
     """eps_z [1/Pa] or sigma_z [-] at depth under (y, x) per unit pressure on the cell at 0."""
+    return _by_symmetry(
+        lambda y, x: _depth_kernel(quantity, y, x, spacing, depth, material, thickness), y, x
+    )
+
+
+def _depth_kernel(
+    quantity: str,
+    y: np.ndarray,
+    x: np.ndarray,
+    spacing: tuple[float, float],
+    depth: float,
+    material: ElasticMaterial,
+    thickness: float | None,
+) -> np.ndarray:
+    """`depth_kernel` at every (y, x) given."""
     dy, dx = spacing
     halfspace_cell, difference, far = _DEPTH_QUANTITIES[quantity](depth, material, thickness)
     halfspace = halfspace_cell(x, y, (-dx / 2, dx / 2, -dy / 2, dy / 2))
