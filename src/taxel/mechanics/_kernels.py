@@ -104,12 +104,16 @@ def _cell_average(
     nodes, weights = np.polynomial.legendre.leggauss(count)
     radii, values = table
     total = np.zeros(np.broadcast_shapes(y.shape, x.shape))
+    correction = np.empty_like(total)
     for node_y, weight_y in zip(nodes, weights, strict=True):
         for node_x, weight_x in zip(nodes, weights, strict=True):
             r = np.hypot(y + node_y * dy / 2, x + node_x * dx / 2)
-            inside = np.interp(r, radii, values)
-            outside = -far_field(np.maximum(r, radii[-1]))
-            total += weight_y * weight_x * np.where(r <= radii[-1], inside, outside)
+            # the table within its reach, minus the far field beyond (each only where used)
+            within = r <= radii[-1]
+            correction[within] = np.interp(r[within], radii, values)
+            beyond = ~within
+            correction[beyond] = -far_field(r[beyond])
+            total += weight_y * weight_x * correction
     return total * dx * dy / 4.0
 
 
