@@ -152,37 +152,29 @@ def displacement_kernel(
     thickness: float | None = None,
 ) -> np.ndarray:
     """Surface displacement at (y, x) per unit pressure on the cell centred at 0 [m/Pa]."""
-    return _by_symmetry(
-        lambda y, x: _displacement_kernel(y, x, spacing, material, thickness), y, x
-    )
-
-
-def _displacement_kernel(
-    y: np.ndarray,
-    x: np.ndarray,
-    spacing: tuple[float, float],
-    material: ElasticMaterial,
-    thickness: float | None,
-) -> np.ndarray:
-    """`displacement_kernel` at every (y, x) given."""
     dy, dx = spacing
-    halfspace = rectangle_displacement(x, y, dx / 2, dy / 2, material)
-    if thickness is None:
-        return halfspace
-    _check_layer(thickness, dy, dx)
-    reach = _LAYER_REACH * thickness
-    # q U_half(q) = 2/E* exactly, so q (U_layer - U_half) is finite at q = 0
-    table = _hankel_table(
-        lambda q: q * layer_displacement_transfer(q, thickness, material)
-        - 2.0 / material.plane_strain_modulus,
-        2.0 * thickness,
-        reach,
-    )
+    if thickness is not None:
+        _check_layer(thickness, dy, dx)
 
-    def far(r: np.ndarray) -> np.ndarray:
-        return point_load_displacement(r, 0.0, 1.0, material)
+    def at(y: np.ndarray, x: np.ndarray) -> np.ndarray:
+        halfspace = rectangle_displacement(x, y, dx / 2, dy / 2, material)
+        if thickness is None:
+            return halfspace
+        reach = _LAYER_REACH * thickness
+        # q U_half(q) = 2/E* exactly, so q (U_layer - U_half) is finite at q = 0
+        table = _hankel_table(
+            lambda q: q * layer_displacement_transfer(q, thickness, material)
+            - 2.0 / material.plane_strain_modulus,
+            2.0 * thickness,
+            reach,
+        )
 
-    return halfspace + _cell_average(table, far, 2.0 * thickness, dy, dx, y, x)
+        def far(r: np.ndarray) -> np.ndarray:
+            return point_load_displacement(r, 0.0, 1.0, material)
+
+        return halfspace + _cell_average(table, far, 2.0 * thickness, dy, dx, y, x)
+
+    return _by_symmetry(at, y, x)
 
 
 def _strain_parts(depth: float, material: ElasticMaterial, thickness: float | None):
@@ -225,27 +217,17 @@ def depth_kernel(
     thickness: float | None = None,
 ) -> np.ndarray:
     """eps_z [1/Pa] or sigma_z [-] at depth under (y, x) per unit pressure on the cell at 0."""
-    return _by_symmetry(
-        lambda y, x: _depth_kernel(quantity, y, x, spacing, depth, material, thickness), y, x
-    )
-
-
-def _depth_kernel(
-    quantity: str,
-    y: np.ndarray,
-    x: np.ndarray,
-    spacing: tuple[float, float],
-    depth: float,
-    material: ElasticMaterial,
-    thickness: float | None,
-) -> np.ndarray:
-    """`depth_kernel` at every (y, x) given."""
     dy, dx = spacing
     halfspace_cell, difference, far = _DEPTH_QUANTITIES[quantity](depth, material, thickness)
-    halfspace = halfspace_cell(x, y, (-dx / 2, dx / 2, -dy / 2, dy / 2))
-    if thickness is None:
-        return halfspace
-    _check_layer(thickness, dy, dx)
-    decay = 2.0 * thickness - depth
-    table = _hankel_table(lambda q: q * difference(q), decay, _LAYER_REACH * thickness)
-    return halfspace + _cell_average(table, far, decay, dy, dx, y, x)
+    if thickness is not None:
+        _check_layer(thickness, dy, dx)
+
+    def at(y: np.ndarray, x: np.ndarray) -> np.ndarray:
+        halfspace = halfspace_cell(x, y, (-dx / 2, dx / 2, -dy / 2, dy / 2))
+        if thickness is None:
+            return halfspace
+        decay = 2.0 * thickness - depth
+        table = _hankel_table(lambda q: q * difference(q), decay, _LAYER_REACH * thickness)
+        return halfspace + _cell_average(table, far, decay, dy, dx, y, x)
+
+    return _by_symmetry(at, y, x)
