@@ -25,7 +25,7 @@ from taxel.active._pad_calibration import PadCalibration, calibrate_pad, core_ar
 from taxel.active._probe import Probe, ProbeReading
 from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._scene import SceneObject
-from taxel.features import find_contact, prepare
+from taxel.features import contact_regions, prepare
 from taxel.frames import make_pose, transform_directions
 from taxel.sensor import TactileSensor
 
@@ -193,12 +193,12 @@ class Deformation:
         # the imprint's outline at a fraction of its contrast over the background itself,
         # whatever the force (see `background_level`), so that the presses' areas compare
         level = background_level(prepare(raw, sensor, noise=noise), sensor)
-        contact = find_contact(raw, sensor, noise=noise, baseline=level)
+        prepared = prepare(raw, sensor, noise=noise, baseline=level)
+        contact = contact_regions(prepared)
         if not contact.present:
             if touch:  # a broad face at a light touch: too faint to see, too light to matter
                 return reading, 0.0, 0, 0.0, 0.0
             raise ValueError(f"the press at {force:g} N shows no contact in the tactile image")
-        prepared = prepare(raw, sensor, noise=noise, baseline=level)
         excess = np.clip(prepared.smooth - prepared.baseline, 0.0, None)
         mask = prepared.mask.astype(bool)
         intensity = float(excess[mask].mean()) if mask.any() else 0.0

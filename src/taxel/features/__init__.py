@@ -24,6 +24,7 @@ baseline, defects, noise, reference) and give what `extract` gives with them.
 Helpers
 -------
 prepare (Prepared): validation, smoothing, noise, baseline and contact mask shared by all;
+contact_regions: `find_contact` on an image already prepared;
 sensor_coordinates: taxel indices to sensor-frame metres; pitch_pair;
 sensor_noise: the noise of a sensor's raw frames (``noise="sensor"``).
 
@@ -38,7 +39,7 @@ Examples
 ('point', [10.0, 20.0])
 """
 
-from taxel.features._contact import Contact, ContactRegion, find_contact
+from taxel.features._contact import Contact, ContactRegion, contact_regions, find_contact
 from taxel.features._edges import Edges, detect_edges
 from taxel.features._extract import ContactPose, TactileFeatures, extract
 from taxel.features._fitting import CircleFit, LineFit, fit_circle, fit_line
@@ -70,6 +71,7 @@ __all__ = [
     "Texture",
     "classify_contact",
     "contact_plane",
+    "contact_regions",
     "detect_edges",
     "detect_holes",
     "detect_slots",
