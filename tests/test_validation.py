@@ -6,10 +6,12 @@ import pytest
 from taxel._validation import (
     as_finite_array,
     as_rng,
+    check_choice,
     check_count,
     check_finite,
     check_flag,
     check_instance,
+    check_integer,
     check_pair,
 )
 from taxel.frames import as_pose
@@ -125,3 +127,50 @@ def test_grid_shapes_and_broadcasting_pairs():
         ValueError, match=r"`a`, `b` and `c` .* together, got \(3,\), \(\) and \(2,\)"
     ):
         check_broadcast(("a", "b", "c"), np.zeros(3), np.zeros(()), np.zeros(2))
+
+
+@pytest.mark.parametrize("value", [np.complex128(1.0), np.complex64(2 + 1j), 1 + 0j])
+def test_a_complex_number_is_not_a_real_number(value):
+    # float() of a NumPy complex dropped the imaginary part with a ComplexWarning only
+    with pytest.raises(TypeError, match="`x` must be a real number, got"):
+        check_finite("x", value)
+
+
+@pytest.mark.parametrize(
+    ("value", "what"),
+    [
+        ("1.5", "'1.5'"),
+        (np.array(["1", "2"]), "text"),
+        (["1", "2"], "text"),
+        (True, "True"),
+        (np.array([True, False]), "booleans"),
+        ([True, False], "booleans"),
+    ],
+)
+def test_text_and_booleans_are_not_numeric_arrays(value, what):
+    # "1.5" was read as 1.5 and a mask as 0/1 without a word
+    with pytest.raises(TypeError, match=f"`x` must be numeric, got {what}"):
+        as_finite_array("x", value)
+
+
+def test_a_choice_must_be_text():
+    # an array in `choices` raised NumPy's "truth value of an array ... is ambiguous"
+    with pytest.raises(TypeError, match="`field` must be one of dark, light; got array"):
+        check_choice("field", np.array(["dark", "light"]), ("dark", "light"))
+    assert check_choice("field", "dark", ("dark", "light")) == "dark"
+
+
+@pytest.mark.parametrize(
+    "value", [np.nan, np.inf, -np.inf, 2.5, 0, True, None, "3", 1 + 0j, [3], np.ones(2)]
+)
+def test_an_integer_parameter_names_itself(value):
+    # int(nan) and int(inf) raised "cannot convert float NaN to integer" or OverflowError
+    with pytest.raises(ValueError, match=r"`bits` must be an integer in 1\.\.16, got"):
+        check_integer("bits", value, 1, 16)
+
+
+def test_an_integer_parameter_passes():
+    assert check_integer("bits", 12.0, 1, 16) == 12
+    assert check_integer("n", np.int64(3)) == 3
+    with pytest.raises(ValueError, match="`n` must be a positive integer, got 0"):
+        check_integer("n", 0)

@@ -21,6 +21,7 @@ __all__ = [
     "check_finite",
     "check_flag",
     "check_instance",
+    "check_integer",
     "check_pair",
     "check_positive",
     "check_progress",
@@ -46,6 +47,11 @@ def check_finite(name: str, value: Any) -> float:
     """
     if isinstance(value, bool | np.bool_ | str | bytes):
         raise TypeError(f"`{name}` must be a real number, got {value!r}")
+    if isinstance(value, complex | np.complexfloating) or (
+        isinstance(value, np.ndarray) and value.dtype.kind == "c"
+    ):
+        # float() of a NumPy complex drops its imaginary part with a warning only
+        raise TypeError(f"`{name}` must be a real number, got {_short(value)}")
     try:
         number = float(value)
     except (TypeError, ValueError):
@@ -86,6 +92,9 @@ def check_range(
 
 def check_choice(name: str, value: Any, choices: tuple[str, ...]) -> str:
     """Return `value` when it is one of `choices`, else raise naming the valid ones."""
+    if not isinstance(value, str):
+        # an array's `in` would raise NumPy's "truth value ... is ambiguous"
+        raise TypeError(f"`{name}` must be one of {', '.join(choices)}; got {_short(value)}")
     if value not in choices:
         raise ValueError(f"`{name}` must be one of {', '.join(choices)}; got {value!r}")
     return str(value)
@@ -105,9 +114,21 @@ def refuse_complex(name: str, value: Any) -> None:
 def as_finite_array(name: str, value: Any, *, ndim: int | None = None) -> np.ndarray:
     """Return `value` as a float64 array, or raise when it has NaN/inf or the wrong ndim.
 
-    A complex array is refused (NumPy would drop its imaginary part with a warning only).
+    A complex array is refused (NumPy would drop its imaginary part with a warning only),
+    and so are text ("1" would be read as 1.0) and booleans (True as 1.0): almost always slips.
     """
     refuse_complex(name, value)
+    if isinstance(value, str | bytes | bool | np.bool_):
+        raise TypeError(f"`{name}` must be numeric, got {_short(value)}")
+    kind = getattr(getattr(value, "dtype", None), "kind", None)
+    if kind is None and isinstance(value, list | tuple):
+        try:
+            kind = np.asarray(value).dtype.kind
+        except (TypeError, ValueError):
+            kind = None
+    if kind in ("U", "S", "b"):
+        what = "booleans" if kind == "b" else "text"
+        raise TypeError(f"`{name}` must be numeric, got {what}: {_short(value)}")
     try:
         array = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError):
@@ -155,6 +176,27 @@ def check_count(name: str, value: Any, *, minimum: int = 1) -> int:
     if count < minimum:
         raise ValueError(f"`{name}` must be >= {minimum}, got {count}")
     return count
+
+
+def check_integer(name: str, value: Any, low: int = 1, high: int | None = None) -> int:
+    """Return `value` as an int in `low`..`high`, or raise a ValueError naming `name`.
+
+    Like `check_count`, but one message for every refusal ("a positive integer" or "an
+    integer in low..high"), so a NaN, an infinity, a bool or 2.5 all read the same.
+    """
+    if high is not None:
+        what = f"an integer in {low}..{high}"
+    else:
+        what = "a positive integer" if low == 1 else f"an integer >= {low}"
+    try:
+        if isinstance(value, bool | np.bool_):
+            raise ValueError
+        number = check_count(name, value, minimum=low)
+    except (TypeError, ValueError):
+        raise ValueError(f"`{name}` must be {what}, got {_short(value)}") from None
+    if high is not None and number > high:
+        raise ValueError(f"`{name}` must be {what}, got {_short(value)}")
+    return number
 
 
 def check_grid_shape(name: str, value: Any) -> tuple[int, int]:
