@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 from scipy import fft
 
-from taxel._validation import as_finite_array, check_positive
+from taxel._validation import as_finite_array, check_count, check_instance, check_positive
 from taxel.mechanics._materials import ElasticMaterial
 from taxel.mechanics._operators import as_spacing
 
@@ -63,11 +63,13 @@ def inplane_stress_difference(
     """
     pressure = as_finite_array("pressure", pressure, ndim=2)
     dy, dx = as_spacing(spacing)
+    if pressure.size == 0:
+        raise ValueError(f"`pressure` must have at least one cell, got shape {pressure.shape}")
     depth = check_positive("depth", depth)
-    if int(padding) < 1:
-        raise ValueError(f"`padding` must be >= 1, got {padding}")
+    check_instance("material", material, ElasticMaterial)
+    padding = check_count("padding", padding)
     rows, cols = pressure.shape
-    shape = (fft.next_fast_len(int(padding) * rows), fft.next_fast_len(int(padding) * cols, True))
+    shape = (fft.next_fast_len(padding * rows), fft.next_fast_len(padding * cols, True))
     ky = 2 * np.pi * fft.fftfreq(shape[0], dy)[:, None]
     kx = 2 * np.pi * fft.rfftfreq(shape[1], dx)[None, :]
     k = np.hypot(kx, ky)

@@ -16,7 +16,13 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_choice, check_positive
+from taxel._validation import (
+    as_finite_array,
+    check_broadcast,
+    check_choice,
+    check_instance,
+    check_positive,
+)
 from taxel.mechanics._materials import ElasticMaterial
 
 __all__ = [
@@ -70,6 +76,7 @@ def line_load_strain(
     """
     x = as_finite_array("x", x)
     depth = check_positive("depth", depth)
+    check_instance("material", material, ElasticMaterial)
     check_choice("direction", direction, _DIRECTIONS)
     nu, modulus = material.poisson_ratio, material.youngs_modulus
     lever = depth if direction == "normal" else x
@@ -145,6 +152,8 @@ def strip_load_strain(
     width = as_finite_array("width", width)
     if np.any(width <= 0):
         raise ValueError(f"`width` must be > 0, got {float(np.min(width)):g}")
+    check_broadcast(("x", "width"), x, width)
+    check_instance("material", material, ElasticMaterial)
     check_choice("direction", direction, _DIRECTIONS)
     upper = _strain_antiderivative(x + width / 2, depth, material, direction)
     lower = _strain_antiderivative(x - width / 2, depth, material, direction)
@@ -184,6 +193,7 @@ def line_load_displacement(
     """
     x = np.abs(as_finite_array("x", x))
     reference_distance = check_positive("reference_distance", reference_distance)
+    check_instance("material", material, ElasticMaterial)
     scale = -2.0 * (1.0 - material.poisson_ratio**2) / (np.pi * material.youngs_modulus)
     with np.errstate(divide="ignore"):
         return scale * np.log(x / reference_distance)
@@ -206,7 +216,13 @@ def _element_matrix(
     """Validate positions and widths; return offsets x_i - x_j and widths broadcast to them."""
     taxels = as_finite_array("taxel_positions", taxel_positions, ndim=1)
     loads = as_finite_array("load_positions", load_positions, ndim=1)
-    widths = np.broadcast_to(as_finite_array("load_width", load_width), loads.shape)
+    widths = as_finite_array("load_width", load_width)
+    if widths.ndim > 1 or widths.size not in (1, loads.size):
+        raise ValueError(
+            f"`load_width` must be a number or one per load position ({loads.size}), "
+            f"got shape {widths.shape}"
+        )
+    widths = np.broadcast_to(widths, loads.shape)
     if np.any(widths <= 0):
         raise ValueError(f"`load_width` must be > 0, got {float(np.min(widths)):g}")
     return taxels[:, None] - loads[None, :], widths[None, :]
@@ -297,6 +313,7 @@ def plane_strain_displacement_matrix(
     """
     offsets, widths = _element_matrix(surface_positions, load_positions, load_width)
     reference_distance = check_positive("reference_distance", reference_distance)
+    check_instance("material", material, ElasticMaterial)
     upper = _displacement_antiderivative(offsets + widths / 2, material, reference_distance)
     lower = _displacement_antiderivative(offsets - widths / 2, material, reference_distance)
     return upper - lower

@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_positive
+from taxel._validation import as_finite_array, check_instance, check_positive
 from taxel.mechanics._materials import ElasticMaterial
 
 __all__ = [
@@ -62,6 +62,7 @@ def halfspace_displacement_transfer(wavenumber: Any, material: ElasticMaterial) 
     1.5000e-09
     """
     q = _wavenumber(wavenumber)
+    check_instance("material", material, ElasticMaterial)
     with np.errstate(divide="ignore"):
         return 2.0 / (material.plane_strain_modulus * q)
 
@@ -85,6 +86,7 @@ def halfspace_strain_transfer(
     -0.0
     """
     q = _wavenumber(wavenumber)
+    check_instance("material", material, ElasticMaterial)
     depth = check_positive("depth", depth)
     nu = material.poisson_ratio
     qd = q * depth
@@ -160,6 +162,7 @@ def layer_displacement_transfer(
     7.428571e-10 7.428571e-10
     """
     q = _wavenumber(wavenumber)
+    check_instance("material", material, ElasticMaterial)
     h = check_positive("thickness", thickness)
     kappa = _kappa(material)
     t = q * h
@@ -216,6 +219,7 @@ def layer_strain_transfer(
     -7.428571e-07 -7.428571e-07
     """
     q = _wavenumber(wavenumber)
+    check_instance("material", material, ElasticMaterial)
     h = check_positive("thickness", thickness)
     d = check_positive("depth", depth)
     if d > h:
@@ -271,6 +275,7 @@ def layer_stress_transfer(
     -1.000000
     """
     q = _wavenumber(wavenumber)
+    check_instance("material", material, ElasticMaterial)
     h = check_positive("thickness", thickness)
     d = check_positive("depth", depth)
     if d > h:
