@@ -13,6 +13,7 @@ from taxel._validation import (
     as_finite_array,
     check_count,
     check_grid_shape,
+    check_integer,
     check_positive,
     check_range,
 )
@@ -138,14 +139,14 @@ def camera_image(
         )
     conversion_gain = check_positive("conversion_gain", conversion_gain)
     read_noise = check_positive("read_noise", read_noise, allow_zero=True)
-    if int(bits) != bits or not 1 <= bits <= 16:
-        raise ValueError(f"`bits` must be an integer in 1..16, got {bits!r}")
+    bits = check_integer("bits", bits, 1, 16)
     mean = dark_level + (bright_level - dark_level) * fraction
     if rng is None:
         value = mean
     else:
         generator = as_generator("rng", rng)
-        electrons = generator.poisson(mean / conversion_gain).astype(float)
+        # np.asarray: a 0-d mean draws a plain int
+        electrons = np.asarray(generator.poisson(mean / conversion_gain), dtype=float)
         electrons += generator.normal(0.0, 1.0, size=mean.shape) * read_noise
         value = electrons * conversion_gain
     top = 2 ** int(bits) - 1

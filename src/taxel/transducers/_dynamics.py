@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_finite, check_positive
+from taxel._validation import as_finite_array, check_finite, check_integer, check_positive
 from taxel.transducers._common import as_generator
 
 __all__ = [
@@ -65,8 +65,7 @@ def play_hysteresis(
     """
     x = _series("signal", signal)
     loop_width = check_positive("loop_width", loop_width, allow_zero=True)
-    if isinstance(n_operators, bool) or int(n_operators) != n_operators or n_operators < 1:
-        raise ValueError(f"`n_operators` must be a positive integer, got {n_operators!r}")
+    n_operators = check_integer("n_operators", n_operators)
     initial_value = check_finite("initial_value", initial_value)
     if loop_width == 0:
         return x.copy()

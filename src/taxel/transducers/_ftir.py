@@ -19,7 +19,7 @@ from typing import Any, ClassVar
 import numpy as np
 from scipy import special
 
-from taxel._validation import as_finite_array, check_positive, check_range
+from taxel._validation import as_finite_array, check_integer, check_positive, check_range
 from taxel.transducers._camera import camera_image, glass_scratches
 
 __all__ = [
@@ -289,9 +289,9 @@ class FtirTransducer:
                 f"light and the membrane frustrates it, got {angle:.4g}"
             )
         camera_image(0.0, **self._camera())  # validates the camera fields
-        glass_scratches(
-            (1, 1), rng=self.scratch_seed, count=self.scratch_count, strength=self.scratch_strength
-        )
+        check_integer("scratch_count", self.scratch_count, 0)
+        # the other scratch fields; count=0, since drawing them all here could take forever
+        glass_scratches((1, 1), rng=self.scratch_seed, count=0, strength=self.scratch_strength)
 
     def _camera(self) -> dict[str, Any]:
         return {

@@ -23,7 +23,13 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_count, check_positive, check_range
+from taxel._validation import (
+    as_finite_array,
+    check_count,
+    check_integer,
+    check_positive,
+    check_range,
+)
 
 __all__ = [
     "MicrobendTransducer",
@@ -257,9 +263,7 @@ class MicrobendTransducer:
     def __post_init__(self) -> None:
         for name in ("rows", "cols"):
             value = getattr(self, name)
-            if int(value) != value or value < 1:
-                raise ValueError(f"`{name}` must be a positive integer, got {value!r}")
-            object.__setattr__(self, name, int(value))
+            object.__setattr__(self, name, check_integer(name, value))
         object.__setattr__(
             self, "crossing_area", check_positive("crossing_area", self.crossing_area)
         )

@@ -19,6 +19,7 @@ from taxel._validation import (
     as_finite_array,
     check_count,
     check_finite,
+    check_integer,
     check_positive,
     check_range,
 )
@@ -90,8 +91,7 @@ def _require_rng(rng: Any) -> np.random.Generator:
 
 
 def _adc(bits: Any, low: float, high: float) -> tuple[int, float, float]:
-    if isinstance(bits, bool) or int(bits) != bits or not 1 <= bits <= 24:
-        raise ValueError(f"`bits` must be an integer in 1..24, got {bits!r}")
+    bits = check_integer("bits", bits, 1, 24)
     low, high = check_finite("low", low), check_finite("high", high)
     if high <= low:
         raise ValueError(f"`high` must exceed low = {low:g}, got {high:g}")

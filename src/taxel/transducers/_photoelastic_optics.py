@@ -14,7 +14,13 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_broadcast, check_choice, check_positive
+from taxel._validation import (
+    as_finite_array,
+    check_broadcast,
+    check_choice,
+    check_integer,
+    check_positive,
+)
 
 __all__ = [
     "FIELDS",
@@ -100,9 +106,8 @@ def photoelastic_retardation(
     layer_thickness = check_positive("layer_thickness", layer_thickness)
     coefficient = check_positive("stress_optic_coefficient", stress_optic_coefficient)
     wavelength = check_positive("wavelength", wavelength)
-    if int(passes) != passes or passes < 1:
-        raise ValueError(f"`passes` must be a positive integer, got {passes!r}")
-    return int(passes) * 2.0 * np.pi * layer_thickness * coefficient * difference / wavelength
+    passes = check_integer("passes", passes)
+    return passes * 2.0 * np.pi * layer_thickness * coefficient * difference / wavelength
 
 
 def polariscope_intensity(

@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_finite, check_positive
+from taxel._validation import as_finite_array, check_finite, check_integer, check_positive
 from taxel.transducers._piezo_film import PVDF_D33, _check_d33
 
 __all__ = [
@@ -53,8 +53,7 @@ def _check_leak(feedback_resistance: Any) -> float:
 def _check_reset(reset_interval: int | None) -> int | None:
     if reset_interval is None:
         return None
-    if int(reset_interval) != reset_interval or reset_interval < 1:
-        raise ValueError(f"`reset_interval` must be a positive integer, got {reset_interval!r}")
+    reset_interval = check_integer("reset_interval", reset_interval)
     return int(reset_interval)
 
 

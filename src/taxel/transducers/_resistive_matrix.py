@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_choice, check_positive
+from taxel._validation import as_finite_array, check_choice, check_integer, check_positive
 
 __all__ = ["ResistiveScanInversion", "invert_resistive_scan", "scan_resistive_matrix"]
 
@@ -248,8 +248,7 @@ def invert_resistive_scan(
         supply_voltage, feedback_resistance, switch_resistance, unselected
     )
     tolerance = check_positive("tolerance", tolerance)
-    if int(max_iterations) != max_iterations or max_iterations < 1:
-        raise ValueError(f"`max_iterations` must be a positive integer, got {max_iterations!r}")
+    max_iterations = check_integer("max_iterations", max_iterations)
     measured = output_voltage / (feedback_resistance * supply_voltage)
     if switch_resistance > 0 and np.any(measured * 2.0 * switch_resistance >= 1.0):
         raise ValueError(
