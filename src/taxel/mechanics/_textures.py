@@ -12,7 +12,7 @@ from functools import lru_cache
 import numpy as np
 from scipy import ndimage
 
-from taxel._validation import check_positive
+from taxel._validation import check_count, check_positive
 from taxel.mechanics._indenter_base import Indenter
 
 __all__ = ["PerforatedScreen", "StiffFoam", "WoodRasp"]
@@ -82,6 +82,8 @@ class StiffFoam(Indenter):
     seed: int = 0
 
     def __post_init__(self) -> None:
+        # a NaN or text seed was stored and failed only when the heights were drawn
+        object.__setattr__(self, "seed", check_count("seed", self.seed, minimum=0))
         check_positive("cell_size", self.cell_size)
         check_positive("depth", self.depth)
 
@@ -145,6 +147,8 @@ class WoodRasp(Indenter):
     seed: int = 0
 
     def __post_init__(self) -> None:
+        # a NaN or text seed was stored and failed only when the heights were drawn
+        object.__setattr__(self, "seed", check_count("seed", self.seed, minimum=0))
         for name in ("tooth_pitch", "row_pitch", "tooth_height"):
             check_positive(name, getattr(self, name))
         check_positive("scatter", self.scatter, allow_zero=True)
@@ -189,6 +193,8 @@ class PerforatedScreen(Indenter):
     seed: int = 0
 
     def __post_init__(self) -> None:
+        # a NaN or text seed was stored and failed only when the heights were drawn
+        object.__setattr__(self, "seed", check_count("seed", self.seed, minimum=0))
         check_positive("hole_diameter", self.hole_diameter)
         check_positive("pitch", self.pitch)
         check_positive("waviness", self.waviness, allow_zero=True)

@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_choice, check_positive
+from taxel._validation import as_finite_array, check_choice, check_instance, check_positive
 
 __all__ = ["DENSITY_CLASSES", "ArrayGeometry", "LoadGrid", "density_class"]
 
@@ -65,7 +65,7 @@ class ArrayGeometry:
             if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
                 raise ValueError(f"`{name}` must be a positive integer, got {value!r}")
         check_choice("layout", self.layout, LAYOUTS)
-        values = np.atleast_1d(np.asarray(self.pitch, dtype=float))
+        values = np.atleast_1d(as_finite_array("pitch", self.pitch))
         if values.size not in (1, 2):
             raise ValueError(f"`pitch` must be a number or a (row, col) pair, got {self.pitch!r}")
         for value in values:
@@ -179,6 +179,7 @@ class LoadGrid:
     oversampling: int = 1
 
     def __post_init__(self) -> None:
+        check_instance("geometry", self.geometry, ArrayGeometry)
         k = self.oversampling
         if isinstance(k, bool) or not isinstance(k, int | np.integer) or k < 1:
             raise ValueError(f"`oversampling` must be a positive integer, got {k!r}")

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_finite, check_positive, check_range
+from taxel._validation import check_count, check_finite, check_positive, check_range
 from taxel.transducers import (
     GainOffset,
     TaxelFaults,
@@ -115,6 +115,8 @@ class Readout:
             check_range(name, getattr(self, name), 0.0, 1.0, high_inclusive=False)
         check_positive("creep_time", self.creep_time)
         check_finite("temperature_coefficient", self.temperature_coefficient)
+        # a NaN or text seed was stored and failed only at the first reading
+        object.__setattr__(self, "unit_seed", check_count("unit_seed", self.unit_seed, minimum=0))
 
     @property
     def is_identity(self) -> bool:
