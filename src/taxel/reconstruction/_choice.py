@@ -16,6 +16,8 @@ from functools import cached_property
 
 import numpy as np
 
+from taxel._validation import as_finite_array, check_broadcast
+
 __all__ = ["RULES", "ParameterCurve", "ParameterScan", "lcurve_curvature"]
 
 RULES: tuple[str, ...] = ("gcv", "lcurve", "discrepancy")
@@ -176,10 +178,23 @@ def lcurve_curvature(
     >>> print(f"{lam[np.argmax(lcurve_curvature(lam, rho, eta, deta))]:.1e}")
     7.4e-05
     """
-    lam = np.asarray(regularization, dtype=float)
-    rho, eta, deta = (
-        np.asarray(v, dtype=float) for v in (residual, seminorm, seminorm_derivative)
-    )
+    names = ("regularization", "residual", "seminorm", "seminorm_derivative")
+    arrays = [
+        as_finite_array(name, value)
+        for name, value in zip(
+            names, (regularization, residual, seminorm, seminorm_derivative), strict=False
+        )
+    ]
+    for name, array in zip(names, arrays, strict=False):
+        if array.size == 0:
+            raise ValueError(f"`{name}` must not be empty, got shape {array.shape}")
+    check_broadcast(names, *arrays)
+    return _curvature(*arrays)
+
+
+def _curvature(lam: np.ndarray, rho: np.ndarray, eta: np.ndarray, deta: np.ndarray) -> np.ndarray:
+    """`lcurve_curvature` without the checks; zero where it is not finite."""
+    lam, rho, eta, deta = (np.asarray(v, dtype=float) for v in (lam, rho, eta, deta))
     with np.errstate(divide="ignore", invalid="ignore"):
         numerator = lam**2 * deta * rho + 2 * lam * eta * rho + lam**4 * eta * deta
         kappa = -2 * (eta * rho / deta) * numerator / (lam**4 * eta**2 + rho**2) ** 1.5
@@ -317,7 +332,7 @@ class ParameterScan:
                 curvature = np.nan_to_num((dx * ddy - ddx * dy) / (dx**2 + dy**2) ** 1.5)
         else:
             derivative = (self._derivative_weight @ data).T
-            curvature = lcurve_curvature(self.grid, residual, seminorm, derivative)
+            curvature = _curvature(self.grid, residual, seminorm, derivative)
         return np.sqrt(seminorm / self.scale), curvature
 
     def choose(
