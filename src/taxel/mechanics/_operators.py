@@ -13,7 +13,13 @@ from typing import Any
 import numpy as np
 from scipy import fft
 
-from taxel._validation import as_finite_array, check_grid_shape, check_positive
+from taxel._validation import (
+    as_finite_array,
+    check_flag,
+    check_grid_shape,
+    check_instance,
+    check_positive,
+)
 from taxel.mechanics._kernels import depth_kernel, displacement_kernel, offsets
 from taxel.mechanics._materials import ElasticMaterial
 from taxel.mechanics._transfer import (
@@ -202,7 +208,9 @@ def surface_displacement_operator(
     spacing = as_spacing(spacing)
     if thickness is not None:
         thickness = check_positive("thickness", thickness)
-    if periodic:
+    check_instance("material", material, ElasticMaterial)
+    # a truthy string such as "no" picked the periodic operator
+    if check_flag("periodic", periodic):
         magnitude, ky, kx = _wavenumbers(shape, spacing)
         if thickness is None:
             with np.errstate(divide="ignore"):
@@ -238,7 +246,8 @@ def _depth_operator(
         thickness = check_positive("thickness", thickness)
         if depth > thickness:
             raise ValueError(f"`depth` must be <= `thickness` ({thickness:g} m), got {depth:g}")
-    if periodic:
+    check_instance("material", material, ElasticMaterial)
+    if check_flag("periodic", periodic):
         magnitude, ky, kx = _wavenumbers(shape, spacing)
         if quantity == "strain":
             transfer = (
