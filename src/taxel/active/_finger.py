@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Sequence
 from dataclasses import replace
 from typing import Any
@@ -21,6 +22,10 @@ __all__ = ["SimulatedFinger", "finger_force_limit"]
 # compress an object by more than half its height is refused, not extrapolated (the seed's
 # racquet ball, the softest object it pressed, lost 18 % of its height at 39 N).
 _LARGEST_COMPRESSION = 0.5
+# A slide reads one frame per sensor frame period: a speed slip (mm/s given as m/s) would
+# ask for millions of presses; more than this many frames is refused before moving.
+_MOST_SLIDE_FRAMES = 100_000
+_UNMOVED = ("; the finger did not move", "; the finger stays where it was")
 
 
 def finger_force_limit(sensor: TactileSensor | str) -> float:
@@ -209,16 +214,37 @@ class SimulatedFinger:
         lengths = np.linalg.norm(np.diff(points, axis=0), axis=1)
         arc = np.concatenate([[0.0], np.cumsum(lengths)])
         step = speed / self._sensor.frame_rate
+        n_frames = math.floor(arc[-1] / step + 1e-9) + 1
+        if n_frames > _MOST_SLIDE_FRAMES:
+            raise ValueError(
+                f"`speed` {speed:g} m/s over the {arc[-1] * 1e3:.3g} mm `path` reads "
+                f"{n_frames:.3g} frames at {self._sensor.frame_rate:g} Hz, more than "
+                f"{_MOST_SLIDE_FRAMES}; the finger did not move"
+            )
         samples = np.arange(0.0, arc[-1] + 1e-12, step)
-        start_pose, readings = self._pose.copy(), []
+        start_pose, start_last, start_time = self._pose.copy(), self._last, self._time
+        readings = []
         for distance in samples:
             origin = np.array([np.interp(distance, arc, points[:, i]) for i in range(3)])
             pose = start_pose.copy()
             pose[:3, 3] = origin
             last = self._last
-            self.move_to(pose)
-            self._last = last  # keep warm-starting along the path
-            readings.append(self.press(normal_force=normal_force))
+            try:
+                self.move_to(pose)
+                self._last = last  # keep warm-starting along the path
+                readings.append(self.press(normal_force=normal_force))
+            except ValueError as error:
+                # a refused step leaves the finger where (and as) the slide found it
+                self._pose, self._last, self._time = start_pose, start_last, start_time
+                if not readings:  # refused at the start: it did not move at all
+                    raise
+                message = str(error)
+                for unmoved in _UNMOVED:
+                    message = message.removesuffix(unmoved)
+                raise type(error)(
+                    f"the slide was refused {distance * 1e3:.3g} mm along `path`: {message}; "
+                    "the finger went back to where the slide started"
+                ) from None
             self._time += 1.0 / self._sensor.frame_rate
         return readings
 
