@@ -525,3 +525,30 @@ def test_an_edge_at_the_stated_limit_is_measured(capsys, small_files):
         assert main(["active", "edge-radius", "--radius-mm", "3", "--table", table, *where]) == 0
         estimate = capsys.readouterr().out.split("estimated radius: ")[1].split(" mm")[0]
         assert abs(float(estimate) - 3.0) < 0.2
+
+
+def test_json_output_is_strict_json_with_null_for_non_finite_numbers(capsys):
+    import argparse
+
+    import numpy as np
+
+    from taxel.cli._active_procedures import _emit
+
+    payload = {
+        "stiffness_n_per_m": float("inf"),
+        "growth": np.float64("nan"),
+        "steps": [{"measurements": {"area": float("-inf"), "force": 2.0}}],
+        "points": (1.0, float("nan")),
+    }
+    assert _emit(argparse.Namespace(json=True), payload, []) == 0
+
+    def refuse(token):
+        raise AssertionError(f"non-standard JSON token {token}")
+
+    result = json.loads(capsys.readouterr().out, parse_constant=refuse)
+    assert result == {
+        "stiffness_n_per_m": None,
+        "growth": None,
+        "steps": [{"measurements": {"area": None, "force": 2.0}}],
+        "points": [1.0, None],
+    }

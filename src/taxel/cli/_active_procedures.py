@@ -26,6 +26,17 @@ _TOUCH = 0.5  # measure_deformation's touch_force [N], the first press of a pad 
 _DEFAULT_OBJECT = "racquet ball"  # what `stiffness` presses unless told
 
 
+def _strict(value: Any) -> Any:
+    """`value` with every NaN or infinite number as None: strict JSON has no such tokens."""
+    if isinstance(value, dict):
+        return {key: _strict(item) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [_strict(item) for item in value]
+    if isinstance(value, float) and not math.isfinite(value):  # (numpy's float64 too)
+        return None
+    return value
+
+
 def _emit(
     arguments: argparse.Namespace,
     payload: dict[str, Any],
@@ -34,7 +45,7 @@ def _emit(
 ) -> int:
     """Print the result; then, on stderr, the files the command built (`built`)."""
     if arguments.json:
-        json.dump(payload, sys.stdout, indent=2, allow_nan=True, default=float)
+        json.dump(_strict(payload), sys.stdout, indent=2, allow_nan=False, default=float)
         sys.stdout.write("\n")
     else:
         sys.stdout.write("\n".join(lines) + "\n")
