@@ -24,7 +24,7 @@ from scipy.interpolate import PchipInterpolator
 
 from taxel._validation import as_finite_array
 from taxel.active._edge_section import SECTION_DESCRIPTORS, EdgeCrossSection
-from taxel.active._json_files import read_json, write_json
+from taxel.active._json_files import parsing, read_json, write_json
 
 __all__ = ["EdgeRadiusTable", "fit_edge_radius_table"]
 
@@ -261,25 +261,26 @@ class EdgeRadiusTable:
         )
         if data.get("version", 1) != _VERSION:
             raise ValueError(
-                f"`path` {str(source)!r} holds a version {data.get('version', 1)} table, this "
+                f"`path` {str(source)!r} holds a version {data.get('version', 1)!r} table, this "
                 f"is version {_VERSION}: its line loads are the force over the edge's chord, "
                 "not over the length that carries it; build the table again"
             )
         if data.get("descriptors") != list(SECTION_DESCRIPTORS):
             raise ValueError(f"`path` {str(source)!r} holds other descriptors than this version")
-        return cls(
-            radii=np.array(data["radii_m"], float),
-            forces=np.array(data["forces_n"], float),
-            reference_loads=np.array(data["reference_loads_n_per_m"], float),
-            intercepts=np.array(data["intercepts"], float),
-            slopes=np.array(data["slopes"], float),
-            spreads=np.array(data["spreads"], float),
-            sensor=str(data.get("sensor", "")),
-            n_presses=int(data.get("n_presses", 0)),
-            correlation=None
-            if data.get("correlation") is None
-            else np.array(data["correlation"], float),
-        )
+        with parsing(source, "an edge radius table"):
+            return cls(
+                radii=np.array(data["radii_m"], float),
+                forces=np.array(data["forces_n"], float),
+                reference_loads=np.array(data["reference_loads_n_per_m"], float),
+                intercepts=np.array(data["intercepts"], float),
+                slopes=np.array(data["slopes"], float),
+                spreads=np.array(data["spreads"], float),
+                sensor=str(data.get("sensor", "")),
+                n_presses=int(data.get("n_presses", 0)),
+                correlation=None
+                if data.get("correlation") is None
+                else np.array(data["correlation"], float),
+            )
 
 
 def fit_edge_radius_table(

@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
 from taxel.io import write_text
 
-__all__ = ["read_json", "write_json"]
+__all__ = ["parsing", "read_json", "write_json"]
 
 
 def write_json(
@@ -49,3 +50,16 @@ def read_json(
         keys = ", ".join(missing)
         raise ValueError(f"`path` {str(source)!r} lacks {keys}: it is not {what} made by taxel")
     return data
+
+
+@contextmanager
+def parsing(path: str | os.PathLike[str], what: str) -> Iterator[None]:
+    """Errors making `what` from a file's values, said as the file's fault, naming it.
+
+    A value of the wrong type or shape (text for a number, ragged lists, 1e999) fails in
+    NumPy or in the checks of the object made; either way the file is what is wrong.
+    """
+    try:
+        yield
+    except (TypeError, ValueError, OverflowError) as error:
+        raise ValueError(f"`path` {str(path)!r} is not {what} taxel can read: {error}") from None

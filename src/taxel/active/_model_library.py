@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from taxel._validation import as_finite_array, check_positive
-from taxel.active._json_files import read_json, write_json
+from taxel.active._json_files import parsing, read_json, write_json
 
 __all__ = ["ModelLibrary"]
 
@@ -79,6 +79,8 @@ class ModelLibrary:
             )
         if len(self.names) < 2:
             raise ValueError(f"`names` must hold at least 2 models, got {list(self.names)}")
+        if len(set(self.names)) != len(self.names):
+            raise ValueError(f"`names` must name each model once, got {list(self.names)}")
         missing = sorted(set(self.names) - set(self.labels))
         if missing:
             raise ValueError(f"`templates` has no template of {', '.join(missing)}")
@@ -209,16 +211,17 @@ class ModelLibrary:
             ),
             "a model library",
         )
-        templates = np.array(
-            [[np.nan if v is None else v for v in row] for row in data["templates"]], float
-        )
-        return cls(
-            names=tuple(data["names"]),
-            templates=templates,
-            labels=tuple(data["labels"]),
-            scales=np.array(data["scales"], float),
-            feature_names=tuple(data["feature_names"]),
-            normal_force=float(data["normal_force_n"]),
-            step=float(data["step_m"]),
-            sensor=str(data.get("sensor", "")),
-        )
+        with parsing(source, "a model library"):
+            templates = np.array(
+                [[np.nan if v is None else v for v in row] for row in data["templates"]], float
+            )
+            return cls(
+                names=tuple(data["names"]),
+                templates=templates,
+                labels=tuple(data["labels"]),
+                scales=np.array(data["scales"], float),
+                feature_names=tuple(data["feature_names"]),
+                normal_force=float(data["normal_force_n"]),
+                step=float(data["step_m"]),
+                sensor=str(data.get("sensor", "")),
+            )

@@ -26,7 +26,7 @@ from taxel._validation import as_finite_array, as_rng, check_positive
 from taxel.active._deformable_objects import make_block
 from taxel.active._finger import SimulatedFinger
 from taxel.active._imaging import imaging_sensor
-from taxel.active._json_files import read_json, write_json
+from taxel.active._json_files import parsing, read_json, write_json
 from taxel.active._progress import Progress, check_progress
 from taxel.active._scene import ProfileObject, make_ball
 from taxel.features import prepare
@@ -172,12 +172,13 @@ class PadCalibration:
         data = read_json(
             source, _FORMAT, ("forces_n", "areas_m2", "compressions_m"), "a pad calibration"
         )
-        return cls(
-            forces=np.array(data["forces_n"], float),
-            areas=np.array(data["areas_m2"], float),
-            compressions=np.array(data["compressions_m"], float),
-            sensor=str(data.get("sensor", "")),
-        )
+        with parsing(source, "a pad calibration"):
+            return cls(
+                forces=np.array(data["forces_n"], float),
+                areas=np.array(data["areas_m2"], float),
+                compressions=np.array(data["compressions_m"], float),
+                sensor=str(data.get("sensor", "")),
+            )
 
 
 def _references(radii: Sequence[float]) -> list[ProfileObject]:
