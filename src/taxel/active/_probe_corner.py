@@ -17,6 +17,7 @@ import numpy as np
 
 from taxel._validation import check_instance, check_positive
 from taxel.active._contact_point import ContactPointCalibration
+from taxel.active._counts import is_whole
 from taxel.active._probe import Probe
 from taxel.active._probe_plane import (
     MIN_PROBES,
@@ -61,7 +62,7 @@ def box_corner_frame(box: Box, index: int) -> np.ndarray:
     """
     if not isinstance(box, Box):
         raise TypeError(f"`box` must be a Box, got {box!r}")
-    if int(index) != index or not 0 <= index < 8:
+    if not is_whole(index) or not 0 <= index < 8:
         raise ValueError(f"`index` must be an integer in [0, 7], got {index!r}")
     corners = box.corners
     local = transform_points(np.linalg.inv(box.pose), corners[index])
@@ -158,7 +159,7 @@ class CornerProbing:
         calibration: ContactPointCalibration | None = None,
     ) -> None:
         self.normal_force = check_positive("normal_force", normal_force)
-        if int(probes_per_face) != probes_per_face or probes_per_face < MIN_PROBES:
+        if not is_whole(probes_per_face) or probes_per_face < MIN_PROBES:
             raise ValueError(
                 f"`probes_per_face` must be an integer >= {MIN_PROBES}, got {probes_per_face!r}"
             )

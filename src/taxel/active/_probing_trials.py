@@ -14,6 +14,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from taxel._validation import check_count, check_positive, check_range
+from taxel.active._counts import is_whole
 from taxel.active._finger import SimulatedFinger
 from taxel.active._imaging import imaging_sensor
 from taxel.active._probe_corner import CornerEstimate, CornerProbing, box_corner_frame
@@ -129,7 +130,7 @@ def plane_probing_trial(
     ['estimate', 'n_probes', 'normal_error_deg']
     """
     probe_sensor = imaging_sensor(sensor)
-    if int(n_probes) != n_probes or n_probes < MIN_PROBES:
+    if not is_whole(n_probes) or n_probes < MIN_PROBES:
         raise ValueError(f"`n_probes` must be an integer >= {MIN_PROBES}, got {n_probes!r}")
     face_tilt = check_range("face_tilt", face_tilt, 0.0, np.radians(45.0))
     pose_tilt = check_range("pose_tilt", pose_tilt, 0.0, np.radians(30.0))

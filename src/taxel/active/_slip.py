@@ -69,6 +69,7 @@ from typing import Any
 import numpy as np
 
 from taxel._validation import as_finite_array, check_positive
+from taxel.active._counts import is_whole
 from taxel.active._slip_signals import (
     cusum,
     matched_filter,
@@ -254,7 +255,7 @@ class SlipDetector:
         for value in pitch:
             check_positive("taxel_pitch", value)
         self.taxel_pitch = (float(pitch[0]), float(pitch[1]))
-        if int(warm_up) != warm_up or warm_up < _REFERENCE + _GAP + 2:
+        if not is_whole(warm_up) or warm_up < _REFERENCE + _GAP + 2:
             raise ValueError(
                 f"`warm_up` must be an integer >= {_REFERENCE + _GAP + 2}, got {warm_up!r}"
             )

@@ -18,6 +18,7 @@ from typing import Any, cast
 import numpy as np
 
 from taxel._validation import check_count, check_range
+from taxel.active._counts import is_whole
 from taxel.active._slip import SlipDetection, SlipDetector
 from taxel.active._slip_simulation import (
     SlipSequence,
@@ -44,7 +45,7 @@ def slip_trials(
     rng = np.random.default_rng(check_count("seed", seed, minimum=0))
     counts = {"slip": n_slip, "hold": n_hold, "steady": n_steady}
     for name, count in counts.items():
-        if int(count) != count or count < 0:
+        if not is_whole(count) or count < 0:
             raise ValueError(f"`n_{name}` must be an integer >= 0, got {count!r}")
     return [
         simulate_slip(random_slip_scenario(kind, rng))
