@@ -251,10 +251,12 @@ class SlipDetector:
         rest_speed: float = 5e-3,
         piezo_time_constant: float | None = None,
     ) -> None:
-        pitch = np.broadcast_to(np.asarray(taxel_pitch, float), (2,))
-        for value in pitch:
+        pitch = as_finite_array("taxel_pitch", taxel_pitch).ravel()
+        if np.ndim(taxel_pitch) > 1 or pitch.size not in (1, 2):
+            raise ValueError(f"`taxel_pitch` must be one or two lengths [m], got {taxel_pitch!r}")
+        for value in np.broadcast_to(pitch, (2,)):
             check_positive("taxel_pitch", value)
-        self.taxel_pitch = (float(pitch[0]), float(pitch[1]))
+        self.taxel_pitch = (float(pitch[0]), float(pitch[-1]))
         if not is_whole(warm_up) or warm_up < _REFERENCE + _GAP + 2:
             raise ValueError(
                 f"`warm_up` must be an integer >= {_REFERENCE + _GAP + 2}, got {warm_up!r}"
@@ -302,6 +304,11 @@ class SlipDetector:
         SlipDetection
         """
         frames = as_finite_array("static_frames", static_frames, ndim=3)
+        if min(frames.shape[1:]) < 2:  # the pattern's gradient needs two taxels each way
+            raise ValueError(
+                "`static_frames` must have at least 2 rows and 2 columns of taxels, got "
+                f"frames of {frames.shape[1]} x {frames.shape[2]}"
+            )
         rate = check_positive("frame_rate", frame_rate)
         n = frames.shape[0]
         if n <= self.warm_up:
@@ -321,6 +328,8 @@ class SlipDetector:
         piezo_statistic, onset_statistic = np.full(n, np.nan), np.full(n, np.nan)
         if piezo_frames is not None:
             piezo = as_finite_array("piezo_frames", piezo_frames, ndim=3)
+            if piezo.shape[1] * piezo.shape[2] == 0:
+                raise ValueError(f"`piezo_frames` must have at least one taxel, got {piezo.shape}")
             if piezo.shape[0] != n:
                 raise ValueError(
                     f"`piezo_frames` has {piezo.shape[0]} frames but `static_frames` has {n}"
