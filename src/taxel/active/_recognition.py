@@ -39,6 +39,10 @@ __all__ = [
 
 N_TOUCHES = 3
 _FIRST = "touch1:"  # the prefix of the first touch's features in a library
+# the features of `touch_descriptor`, in its order: what a library's templates must hold
+DESCRIPTOR_NAMES: tuple[str, ...] = tuple(
+    f"{part}:{name}" for part in ("touch1", "min23", "max23") for name in TOUCH_FEATURES
+)
 
 
 def touch_descriptor(touches: Sequence[np.ndarray]) -> np.ndarray:
@@ -271,6 +275,15 @@ class Recognition:
             if not isinstance(library, str | os.PathLike):
                 raise TypeError(f"`library` must be a ModelLibrary or its file, got {library!r}")
             library = ModelLibrary.load(library)
+        if tuple(library.feature_names) != DESCRIPTOR_NAMES:
+            shown = ", ".join(library.feature_names[:3]) + ", ..." * (
+                len(library.feature_names) > 3
+            )
+            raise ValueError(
+                f"`library` holds the features {shown} ({len(library.feature_names)}), not the "
+                f"{len(DESCRIPTOR_NAMES)} of this version's touches ({DESCRIPTOR_NAMES[0]}, "
+                "...): build it again with build_model_library"
+            )
         self.library = library
         check_instance("stop_early", stop_early, bool)
         self.stop_early = stop_early

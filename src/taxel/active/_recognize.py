@@ -23,16 +23,18 @@ from taxel.active._imaging import imaging_sensor
 from taxel.active._model_library import ModelLibrary
 from taxel.active._object_library import MODEL_NAMES, make_model
 from taxel.active._progress import Progress, check_progress
-from taxel.active._recognition import Recognition, RecognitionResult, explore, touch_descriptor
-from taxel.active._touch_features import TOUCH_FEATURES
+from taxel.active._recognition import (
+    DESCRIPTOR_NAMES,
+    Recognition,
+    RecognitionResult,
+    explore,
+    touch_descriptor,
+)
 from taxel.frames import make_pose
 from taxel.sensor import TactileSensor
 
 __all__ = ["DESCRIPTOR_NAMES", "build_model_library", "recognize_object"]
 
-DESCRIPTOR_NAMES: tuple[str, ...] = tuple(
-    f"{part}:{name}" for part in ("touch1", "min23", "max23") for name in TOUCH_FEATURES
-)
 _DOWN = np.diag([1.0, -1.0, -1.0])
 _STANDOFF = 5e-3
 DEFAULT_TOUCH_FORCE = 15.0
