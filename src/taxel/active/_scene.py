@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_instance, check_positive
+from taxel._validation import check_instance, check_pair, check_positive
 from taxel.frames import as_pose, invert_pose, transform_directions, transform_points
 from taxel.mechanics import ElasticMaterial, Indenter, Sphere, effective_modulus, hertz_sphere
 
@@ -153,7 +153,7 @@ def make_ball(
     12.5
     """
     pose = np.eye(4)
-    pose[:2, 3] = position
+    pose[:2, 3] = check_pair("position", position)
     return ProfileObject(
         name=name,
         pose=pose,
