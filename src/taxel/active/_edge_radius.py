@@ -362,6 +362,8 @@ def build_edge_radius_table(
     if len(set(radii)) < 2:
         raise ValueError(f"`radii` must hold at least 2 distinct radii, got {radii}")
     forces = [check_positive("forces", force) for force in forces]
+    if not forces or len(set(forces)) != len(forces):
+        raise ValueError(f"`forces` must hold one or more distinct forces [N], got {forces}")
     orientations = check_count("orientations", orientations, minimum=2)
     generator = as_rng("rng", rng)
     progress = check_progress(progress)
