@@ -39,6 +39,7 @@ from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._progress import Progress, check_progress
 from taxel.active._scene import ProfileObject
 from taxel.frames import make_pose
+from taxel.io import check_new_file
 from taxel.mechanics import Cylinder
 from taxel.sensor import TactileSensor
 
@@ -365,6 +366,8 @@ def build_edge_radius_table(
     if not forces or len(set(forces)) != len(forces):
         raise ValueError(f"`forces` must hold one or more distinct forces [N], got {forces}")
     orientations = check_count("orientations", orientations, minimum=2)
+    if path is not None:  # refused now, not after the presses
+        check_new_file(path, name="path")
     generator = as_rng("rng", rng)
     progress = check_progress(progress)
     check_section_fits("sensor", chosen.shape, chosen.taxel_pitch)

@@ -31,6 +31,7 @@ from taxel.active._recognition import (
     touch_descriptor,
 )
 from taxel.frames import make_pose
+from taxel.io import check_new_file
 from taxel.sensor import TactileSensor
 
 __all__ = ["DESCRIPTOR_NAMES", "build_model_library", "recognize_object"]
@@ -104,6 +105,8 @@ def build_model_library(
     position_error = check_positive("position_error", position_error, allow_zero=True)
     generator = as_rng("rng", rng)
     progress = check_progress(progress)
+    if path is not None:  # refused now, not after the presses
+        check_new_file(path, name="path")
     chosen = imaging_sensor(sensor)
     templates, labels = [], []
     unique = list(dict.fromkeys(models))
