@@ -41,3 +41,12 @@ def test_a_slide_of_too_many_frames_is_refused_before_moving():
     assert "did not move" in str(refused.value)
     assert np.array_equal(finger.pose, START)
     assert finger.press(normal_force=2.0).normal_force == pytest.approx(2.0)
+
+
+def test_a_pose_facing_away_from_a_lying_object_is_refused_naming_the_pose():
+    finger = _finger()
+    up = make_pose(np.eye(3), [0.0, 0.0, 0.02])  # the sensor normal pointing up, off the ball
+    with pytest.raises(ValueError, match=r"`pose` must face the sensor down at 'ball'"):
+        finger.move_to(up)
+    assert np.array_equal(finger.pose, START)
+    assert finger.press(normal_force=2.0).normal_force == pytest.approx(2.0)

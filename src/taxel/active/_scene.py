@@ -110,7 +110,11 @@ class ProfileObject(SceneObject):
 
     def local_distances(self, origins: np.ndarray, direction: np.ndarray) -> np.ndarray:
         if direction[2] >= -1e-6:
-            raise ValueError("a profile object must be approached from above (sensor facing down)")
+            raise ValueError(
+                f"`pose` must face the sensor down at {self.name!r}: an object lying on the "
+                "table is pressed from above, the sensor's normal pointing down (its z in the "
+                f"object's frame: {np.round(direction, 3).tolist()})"
+            )
         # fixed-point iteration on the height field; exact in one step for a vertical ray
         profile = self.profile
         assert profile is not None  # checked in __post_init__
