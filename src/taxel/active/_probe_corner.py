@@ -167,6 +167,8 @@ class CornerProbing:
         self.inset = None if inset is None else check_positive("inset", inset)
         self.spread = check_positive("spread", spread)
         self.standoff = check_positive("standoff", standoff)
+        if calibration is not None:
+            check_instance("calibration", calibration, ContactPointCalibration)
         self.calibration = calibration
 
     def face_poses(self, guess: Any, face: int, pad_half_diagonal: float) -> list[np.ndarray]:

@@ -17,6 +17,7 @@ from scipy import ndimage
 from taxel._validation import as_finite_array, check_instance, check_positive, check_range
 from taxel.active._probe import Probe
 from taxel.active._procedure import ProcedureStep
+from taxel.active._spatial_spectrum import check_band_edges
 from taxel.active._texture_signature import TextureSignature, texture_signature
 from taxel.mechanics import Indenter
 
@@ -192,6 +193,7 @@ class TextureSliding:
         self.normal_force = check_positive("normal_force", normal_force)
         self.length = check_positive("length", length)
         self.band_edges = as_finite_array("band_edges", band_edges, ndim=1)
+        check_band_edges(self.band_edges)  # now, not after the slide
         self.segment_length = check_positive("segment_length", segment_length)
         if self.segment_length > self.length / 2:
             raise ValueError(
