@@ -50,3 +50,9 @@ def test_a_pose_facing_away_from_a_lying_object_is_refused_naming_the_pose():
         finger.move_to(up)
     assert np.array_equal(finger.pose, START)
     assert finger.press(normal_force=2.0).normal_force == pytest.approx(2.0)
+
+
+@pytest.mark.parametrize("name", [5, None, b"ball"])
+def test_a_scene_object_s_name_must_be_text(name):
+    with pytest.raises(TypeError, match=r"`name` must be a str"):
+        make_ball(name, 6.25e-3)

@@ -47,6 +47,7 @@ class SceneObject(ABC):
     material: ElasticMaterial | None = None
 
     def __post_init__(self) -> None:
+        check_instance("name", self.name, str)  # it names the object in every message
         object.__setattr__(self, "pose", as_pose(self.pose, name="pose"))
         if self.material is not None:
             check_instance("material", self.material, ElasticMaterial)
