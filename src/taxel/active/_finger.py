@@ -206,7 +206,11 @@ class SimulatedFinger:
         return own / (own + 1.0 / self._sensor.cover.material.plane_strain_modulus)
 
     def slide(self, path: Any, *, speed: float, normal_force: float) -> list[ProbeReading]:
-        """Slide pressed through base-frame points (see `Probe.slide`)."""
+        """Slide pressed through base-frame points (see `Probe.slide`).
+
+        A step refused on the way (the path leaves the object or runs into it) puts the
+        finger back where, and as, the slide found it, and raises saying how far it got.
+        """
         points = as_finite_array("path", path, ndim=2)
         if points.shape[1] != 3 or len(points) < 2:
             raise ValueError(f"`path` must be (K >= 2, 3) base-frame points, got {points.shape}")

@@ -91,7 +91,8 @@ class Probe(Protocol):
         """Slide pressed through base-frame points and return one reading per frame.
 
         The finger holds `normal_force` [N] and moves through `path` (K, 3) [m] at `speed`
-        [m/s], reading one frame per sensor frame period.
+        [m/s], reading one frame per sensor frame period. A slide refused on the way
+        raises and leaves the finger where the slide started.
         """
         ...
 
