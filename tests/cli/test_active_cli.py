@@ -552,3 +552,28 @@ def test_json_output_is_strict_json_with_null_for_non_finite_numbers(capsys):
         "steps": [{"measurements": {"area": None, "force": 2.0}}],
         "points": [1.0, None],
     }
+
+
+@pytest.mark.parametrize(
+    ("command", "flag", "name", "key", "value", "message"),
+    [
+        (["edge-radius", "--radius-mm", "3"], "--table", "t.json", "radii_m", "abc", "convert"),
+        (["edge-radius", "--radius-mm", "3"], "--table", "t.json", "radii_m", [3e-3], "2 known"),
+        (["edge-radius", "--radius-mm", "3"], "--table", "t.json", "n_presses", 1e999, "infinity"),
+        (["recognize", "--object", "coin"], "--library", "l.json", "templates", 5, "iterable"),
+        (["stiffness"], "--calibration", "pad.json", "areas_m2", [[1], [1, 2]], "inhomogeneous"),
+    ],
+)
+def test_a_corrupt_file_is_one_line_naming_the_flag_and_the_file(
+    capsys, tmp_path, small_files, command, flag, name, key, value, message
+):
+    data = json.loads((small_files / name).read_text())
+    data[key] = value
+    corrupt = tmp_path / name
+    corrupt.write_text(json.dumps(data))
+    before = corrupt.read_text()
+    assert main(["active", *command, flag, str(corrupt), "--no-progress"]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1
+    assert f"{flag} {str(corrupt)!r} is not " in error and message in error
+    assert corrupt.read_text() == before  # never rebuilt over
