@@ -342,7 +342,7 @@ def _run(arguments: argparse.Namespace) -> int:
             suffix=".png",
             overwrite=arguments.overwrite,
             name="--figure",
-            inputs=(arguments.file,),
+            inputs=tuple(path for path in (arguments.file, arguments.reference) if path),
         )
     try:
         stored = read_frame(arguments.file, key=arguments.key, as_stored=True)
