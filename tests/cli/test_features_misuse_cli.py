@@ -32,3 +32,39 @@ def test_the_figure_never_replaces_the_reference(tmp_path, capsys, washer):
         f"taxel features: error: --figure {str(reference)!r} is an input file; choose another\n"
     )
     assert reference.read_bytes() == before
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        ("folder", "--reference REF: a folder, not a file"),
+        ("archive", "--reference: REF: holds 2 arrays (a, b); give a --reference of one frame"),
+        ("huge", "--reference REF: values up to 1e+20, beyond the 1e+15 the features handle"),
+    ],
+)
+def test_reference_errors_name_the_flag_and_file(tmp_path, capsys, washer, content, message):
+    np.save(tmp_path / "frame.npy", washer)
+    reference = tmp_path / ("rest" if content == "folder" else f"rest.np{content[0]}")
+    if content == "folder":
+        reference.mkdir()
+    elif content == "archive":
+        reference = tmp_path / "rest.npz"
+        np.savez(reference, a=washer, b=washer)
+    else:
+        reference = tmp_path / "rest.npy"
+        np.save(reference, np.full(washer.shape, 1e20))
+    args = ["features", str(tmp_path / "frame.npy"), "--pitch", "1e-3"]
+    assert main([*args, "--reference", str(reference)]) == 2
+    err = _one_line(capsys)
+    assert err.startswith("taxel features: error: ")
+    assert message.replace("REF", str(reference)) in err
+    assert "`" not in err  # no library parameter named
+
+
+@pytest.mark.parametrize("shape", [(1, 1), (2, 5)])
+def test_an_image_too_small_is_named(tmp_path, capsys, shape):
+    path = tmp_path / "small.npy"
+    np.save(path, np.ones(shape))
+    assert main(["features", str(path), "--pitch", "1e-3"]) == 2
+    err = _one_line(capsys)
+    assert f"error: {path}: the image must be at least 3x3 taxels, got shape {shape}" in err

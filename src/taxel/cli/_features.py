@@ -297,8 +297,17 @@ def _load_reference(arguments: argparse.Namespace, shape: tuple[int, ...]) -> np
     with reading("--reference", arguments.reference):
         try:
             reference = read_frame(arguments.reference, as_stored=True)
-        except ValueError as error:
-            raise ValueError(f"--reference: {error}") from None
+        except ValueError as error:  # (--key chooses FILE's array, not the reference's)
+            message = str(error).replace(
+                "; choose one with `key`", "; give a --reference of one frame"
+            )
+            raise ValueError(f"--reference: {message}") from None
+    largest = float(np.abs(reference).max())
+    if largest > _LARGEST_VALUE:
+        raise ValueError(
+            f"--reference {arguments.reference}: values up to {largest:.3g}, beyond the "
+            f"{_LARGEST_VALUE:.0e} the features handle (they compute in single precision)"
+        )
     if reference.shape != shape:
         raise ValueError(
             f"--reference {arguments.reference}: a {' x '.join(map(str, reference.shape))} "
@@ -386,7 +395,10 @@ def _run(arguments: argparse.Namespace) -> int:
             "the reading turns back as the load grows, so the contact found is where the "
             "stress is about half a fringe, not where it is highest: press lighter\n"
         )
-    features = extract(given, pitch, pose=pose, **preparation)
+    try:
+        features = extract(given, pitch, pose=pose, **preparation)
+    except ValueError as error:  # ("`image` must be at least 3x3 taxels"): the file is named
+        raise ValueError(str(error).replace("`image`", f"{arguments.file}: the image")) from None
     _warn_if_defects_erased(arguments, features, given, pitch, preparation)
     if arguments.figure:  # first: a figure that cannot be written stops before any output
         from taxel.viz import plot_features

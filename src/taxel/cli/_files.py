@@ -60,11 +60,17 @@ def reading(flag: str, path: str | os.PathLike[str]) -> Iterator[None]:
         if Path(path).exists():  # another file is missing (one it refers to): as it is
             raise
         raise FileNotFoundError(f"{flag} {path}: no such file") from None
+    except IsADirectoryError:
+        if not Path(path).is_dir():
+            raise
+        raise ValueError(f"{flag} {path}: a folder, not a file") from None
     except ValueError as error:
         message = str(error)
         if message.startswith("`path` "):
             raise ValueError(f"{flag} {message.removeprefix('`path` ')}") from None
-        if message.startswith((f"{path}:", f"{Path(path)}:")):  # (./x.json reads as x.json)
+        if message.startswith(
+            tuple(f"{name}{end}" for name in {str(path), str(Path(path))} for end in (":", " "))
+        ):  # (./x.json reads as x.json)
             raise ValueError(f"{flag} {message}") from None
         raise
 
