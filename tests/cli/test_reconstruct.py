@@ -125,7 +125,7 @@ def test_nan_frame_and_missing_file(tmp_path, capsys):
     np.save(bad, np.full((16, 16), np.nan))
     out = str(tmp_path / "p.npy")
     assert main(["reconstruct", str(bad), "--sensor", "resistive16", "--out", out]) == 2
-    assert "`frame` must be finite" in capsys.readouterr().err
+    assert f"`FRAME` {str(bad)!r} must be finite" in capsys.readouterr().err
     missing = str(tmp_path / "missing.npy")
     assert main(["reconstruct", missing, "--sensor", "resistive16", "--out", out]) == 2
     assert "`FRAME` must be an existing .npy file" in capsys.readouterr().err

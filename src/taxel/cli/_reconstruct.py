@@ -18,6 +18,7 @@ from taxel.cli._reconstruct_input import load_readings
 __all__ = ["register"]
 
 _RULES = ("gcv", "lcurve", "discrepancy")
+_BATCH_METHODS = ("tikhonov", "tsvd")  # the others solve one frame at a time
 # the presets `taxel.reconstruction.forward_model_preset` builds (a test keeps them equal)
 INVERTIBLE_PRESETS = (
     "vhdta128",
@@ -76,6 +77,7 @@ def _run(arguments: argparse.Namespace) -> int:
         arguments.out, suffix=".npy", overwrite=arguments.overwrite, name="--out", inputs=(path,)
     )
     frame, warnings = load_readings(path, arguments.sensor, arguments.calibration)
+    _check_batch(path, frame, arguments.method)
     for warning in warnings:
         sys.stderr.write(f"taxel reconstruct: warning: {warning}\n")
     spec = forward_model_preset(arguments.sensor, oversampling=arguments.oversampling)
@@ -89,16 +91,19 @@ def _run(arguments: argparse.Namespace) -> int:
                 f"({spec.full_scale:.4g}{unit}), got {arguments.noise_level:g}"
             ) from None
     # only the iterative methods (nonneg, tv) report progress; the others draw no bar
-    with solving_on(spec.load_shape, arguments.method, bar=not arguments.no_progress) as progress:
-        result = reconstruct(
-            frame,
-            spec,
-            method=arguments.method,
-            order=_order(arguments),
-            regularization=arguments.regularization,
-            noise_level=arguments.noise_level,
-            progress=progress,
-        )
+    try:
+        with solving_on(spec.load_shape, arguments.method, bar=not arguments.no_progress) as bar:
+            result = reconstruct(
+                frame,
+                spec,
+                method=arguments.method,
+                order=_order(arguments),
+                regularization=arguments.regularization,
+                noise_level=arguments.noise_level,
+                progress=bar,
+            )
+    except ValueError as error:  # the library names its `frame`; the user gave FRAME
+        raise ValueError(str(error).replace("`frame`", f"`FRAME` {str(path)!r}")) from None
     centre = result.centroid_m
     second, second_rule = _support_stage(result)
     first = result.regularization if second is None else result.first_regularization
@@ -138,6 +143,18 @@ def _run(arguments: argparse.Namespace) -> int:
         write_frame(arguments.out, result.pressure, overwrite=arguments.overwrite, inputs=(path,))
     sys.stdout.write(text)
     return 0
+
+
+def _check_batch(path: Path, frame: np.ndarray, method: str) -> None:
+    """Refuse a batch of frames for a method that reconstructs one frame at a time."""
+    if frame.ndim <= 2 or method in _BATCH_METHODS:
+        return
+    count = math.prod(frame.shape[:-2])
+    frames = "a batch of 1 frame" if count == 1 else f"{count} frames"
+    raise ValueError(
+        f"`FRAME` {str(path)!r} holds {frames}, but --method {method} reconstructs one frame "
+        f"at a time ({' and '.join(_BATCH_METHODS)} take a batch)"
+    )
 
 
 def _why_not_invertible(name: str) -> str:
@@ -225,8 +242,9 @@ def register(commands: argparse._SubParsersAction) -> None:
     parser = commands.add_parser(
         "reconstruct",
         help="recover the pressure map behind a tactile frame (regularized inverse)",
-        description="Recover the pressure on the load grid from calibrated taxel readings "
-        "(a .npy frame, or a batch of frames) with regularization chosen automatically.",
+        description="Recover the pressure on the load grid from calibrated taxel readings, "
+        "with regularization chosen automatically: one frame (.npy), or a batch of frames "
+        "(tikhonov and tsvd), an array of any shape ending in the sensor's frame shape.",
     )
     parser.add_argument(
         "frame",
