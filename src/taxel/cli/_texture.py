@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
 from collections.abc import Mapping
 from pathlib import Path
@@ -61,10 +62,39 @@ def _features(path: Path, settings: Mapping[str, Any], names: Mapping[str, str])
         )
         return texture_features(signature, per_taxel=bool(settings.get("per_taxel", True)))
     except (ValueError, TypeError) as error:  # a model's setting may be of the wrong type
-        message = str(error)
+        message = re.sub(
+            r"`readings` must have at least (\d+) steps, got (\d+)",
+            r"it holds \2 readings of each taxel; a recording needs at least \1",
+            str(error),
+        )
         for name, shown in names.items():
             message = message.replace(f"`{name}`", shown)
         raise type(error)(f"{path}: {message}") from None
+
+
+def _check_model(path: str, settings: Mapping[str, Any]) -> None:
+    """Refuse a --model whose settings `_features` cannot follow as they are written."""
+    reader = settings.get("reader", "fabricslide")
+    if reader != "fabricslide":
+        raise ValueError(
+            f"--model {path}: fitted on {reader!r} recordings; taxel texture reads FabricSlide "
+            "ones"
+        )
+    per_taxel = settings.get("per_taxel", True)
+    if not isinstance(per_taxel, bool):  # (bool("no") is True)
+        raise ValueError(
+            f"--model {path}: its per_taxel must be true or false, got {json.dumps(per_taxel)}"
+        )
+
+
+def _check_features(path: str, features: np.ndarray, examples: np.ndarray) -> None:
+    """Refuse features of another length than the model's examples (an edited model)."""
+    given, fitted = features.shape[-1], examples.shape[-1]
+    if given != fitted:
+        raise ValueError(
+            f"--model {path}: its settings give {given} features per recording, but it was "
+            f"fitted on {fitted}: an edited or damaged model file"
+        )
 
 
 def _recordings_in(folder: str, argument: str = "DIR") -> list[Path]:
@@ -143,7 +173,9 @@ def _classify(arguments: argparse.Namespace) -> int:
     ]
     with reading("--model", arguments.model):
         model = TextureClassifier.load(arguments.model)
+    _check_model(arguments.model, model.settings)
     features = np.array([_features(path, model.settings, _MODEL_SETTINGS) for path in files])
+    _check_features(arguments.model, features, model.examples)
     predictions = model.predict(features)
     if arguments.json:
         rows = [
