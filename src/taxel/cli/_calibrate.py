@@ -8,6 +8,7 @@ import sys
 from taxel.cli._arguments import preset, seed
 from taxel.cli._files import writing
 from taxel.cli._main import CommandLineError
+from taxel.cli._progress import announced
 
 __all__ = ["register"]
 
@@ -23,8 +24,13 @@ def _run(arguments: argparse.Namespace) -> int:
         )
     out = check_new_file(arguments.out, suffix=".npz", overwrite=arguments.overwrite, name="--out")
     sensor = make_sensor(arguments.sensor)
-    calibration = calibrate(sensor, rng=arguments.seed)
-    error = calibration_error(sensor, calibration)
+    # (vhdta128 takes seconds; the library reports no progress: a notice on a terminal)
+    with announced(f"calibrating {sensor.name} with flat-plate presses", "", "", bar=False):
+        try:
+            calibration = calibrate(sensor, rng=arguments.seed)
+        except ValueError as refused:  # ("`sensor` 'piezo8x8' senses only changes of load")
+            raise ValueError(str(refused).replace("`sensor`", "--sensor")) from None
+        error = calibration_error(sensor, calibration)
     with writing("--out", out):
         calibration.save(out, overwrite=arguments.overwrite)
     excluded = int((~calibration.valid).sum())
@@ -47,7 +53,12 @@ def register(commands: argparse._SubParsersAction) -> None:
         "taxels, and save the calibration (.npz) for `taxel reconstruct --calibration`.",
     )
     parser.add_argument(
-        "--sensor", type=preset, required=True, metavar="PRESET", help="sensor preset"
+        "--sensor",
+        type=preset,
+        required=True,
+        metavar="PRESET",
+        help="sensor preset; not piezo8x8 (it senses only changes of load) nor photoelastic64 "
+        "(a flat plate makes no fringes)",
     )
     parser.add_argument("--out", required=True, metavar="CAL.npz", help="calibration file")
     parser.add_argument("--seed", type=seed, default=0, help="noise seed of the presses (0)")

@@ -12,6 +12,7 @@ import sys
 from typing import Any
 
 from taxel.cli._arguments import PRESET_NAMES, preset, seed
+from taxel.cli._progress import announced
 
 __all__ = ["register"]
 
@@ -45,7 +46,9 @@ def _run(arguments: argparse.Namespace) -> int:
     from taxel.sensor import harmon_table, make_sensor
 
     sensor = make_sensor(arguments.preset)
-    table = harmon_table(sensor, rng=arguments.seed)
+    # (vhdta128 takes seconds; the library reports no progress: a notice on a terminal)
+    with announced(f"measuring {sensor.name} against Harmon's criteria", "", "", bar=False):
+        table = harmon_table(sensor, rng=arguments.seed)
     if arguments.json:
         data = {"description": sensor.description, "seed": arguments.seed, **table.to_dict()}
         sys.stdout.write(json.dumps(data, indent=2) + "\n")
