@@ -25,8 +25,12 @@ def _output_folder(text: str) -> Path:
     folder = Path(text)
     if folder.exists() and not folder.is_dir():
         raise CommandLineError(f"--out {text!r} must be a folder, but it is a file")
-    with writing("--out", folder):
-        folder.mkdir(parents=True, exist_ok=True)
+    try:
+        with writing("--out", folder):
+            folder.mkdir(parents=True, exist_ok=True)
+    except OSError as error:  # about a parent made on the way: named, as is the folder
+        why = f"{error.strerror or error}: {error.filename}"
+        raise CommandLineError(f"--out {text} cannot be made ({why})") from None
     check_new_file(folder / _FILES[0], suffix=".html", overwrite=True, name="--out")
     return folder
 
