@@ -46,3 +46,25 @@ def test_frames_the_solver_refuses_name_the_file(tmp_path, capsys, content, mess
     err = _one_line(capsys)
     assert f"error: `FRAME` {str(frame)!r} {message}" in err
     assert "`frame`" not in err and not out.exists()
+
+
+@pytest.mark.parametrize(
+    ("extra", "shown"),
+    [
+        (["--lambda", "gcv"], "--lambda gcv"),
+        (["--lambda", "lcurve", "--method", "nonneg"], "--lambda lcurve"),
+        (["--lambda", "0.1"], "--lambda 0.1"),
+    ],
+)
+def test_a_noise_level_no_rule_uses_is_refused(frame_file, tmp_path, capsys, extra, shown):
+    # only the discrepancy rule (and --method support's threshold) reads --noise-level: it
+    # was ignored without a word
+    out = tmp_path / "p.npy"
+    args = ["reconstruct", str(frame_file), "--sensor", "resistive16", "--out", str(out)]
+    assert main([*args, *extra, "--noise-level", "1000"]) == 2
+    assert _one_line(capsys) == (
+        f"taxel reconstruct: error: --noise-level is used by --lambda discrepancy (and by "
+        f"--method support), not by {shown}: leave it out, or choose the discrepancy rule\n"
+    )
+    assert not out.exists()
+    assert main([*args, *extra, "--method", "support", "--noise-level", "1000"]) == 0

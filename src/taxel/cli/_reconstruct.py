@@ -70,6 +70,7 @@ def _run(arguments: argparse.Namespace) -> int:
             f"`--sensor` must be one of {', '.join(FORWARD_MODEL_PRESETS)}; "
             f"got {arguments.sensor!r}{_why_not_invertible(arguments.sensor)}"
         )
+    _check_noise_level_is_used(arguments)
     from taxel.io import check_new_file, write_frame
 
     path = Path(arguments.frame)
@@ -143,6 +144,18 @@ def _run(arguments: argparse.Namespace) -> int:
         write_frame(arguments.out, result.pressure, overwrite=arguments.overwrite, inputs=(path,))
     sys.stdout.write(text)
     return 0
+
+
+def _check_noise_level_is_used(arguments: argparse.Namespace) -> None:
+    """Refuse --noise-level where nothing reads it (a rule other than discrepancy)."""
+    rule = arguments.regularization
+    if arguments.noise_level is None or rule == "discrepancy" or arguments.method == "support":
+        return
+    shown = rule if isinstance(rule, str) else f"{rule:g}"
+    raise ValueError(
+        f"--noise-level is used by --lambda discrepancy (and by --method support), not by "
+        f"--lambda {shown}: leave it out, or choose the discrepancy rule"
+    )
 
 
 def _check_batch(path: Path, frame: np.ndarray, method: str) -> None:
@@ -287,8 +300,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         type=positive,
         default=None,
         metavar="SIGMA",
-        help="noise std of one calibrated reading, in its unit (Pa; m for reflective8x8); "
-        "estimated from the frame if omitted",
+        help="noise std of one calibrated reading, in its unit (Pa; m for reflective8x8), "
+        "for the discrepancy rule and --method support's threshold; estimated from the frame "
+        "if omitted",
     )
     parser.add_argument(
         "--oversampling",
