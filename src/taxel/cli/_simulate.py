@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import math
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -39,6 +40,16 @@ from taxel.io import check_new_file, write_files
 __all__ = ["register"]
 
 _LARGEST_OVERSAMPLING = 16  # --oversampling's bound
+
+
+def _angle(text: str) -> float:
+    """--angle [rad]: finite, and held by a double to 1 urad (as `taxel features --pose`)."""
+    value = finite(text)
+    if math.ulp(value) > 1e-6:  # from 2**33 rad on: its sine and cosine are noise
+        raise argparse.ArgumentTypeError(
+            f"a double holds an angle to 1 urad only up to about 8.6e9 rad, got {text}"
+        )
+    return value
 
 
 def _default_position(indenter: Any) -> tuple[float, float]:
@@ -321,7 +332,7 @@ def register(commands: Any) -> None:
     )
     parser.add_argument("--y", type=finite, metavar="M", help="y of the object's origin [m] (0)")
     parser.add_argument(
-        "--angle", type=finite, default=0.0, metavar="RAD", help="rotation about z [rad] (0)"
+        "--angle", type=_angle, default=0.0, metavar="RAD", help="rotation about z [rad] (0)"
     )
     parser.add_argument(
         "--seed", type=seed, metavar="N", help="switch the sensor's noise on, reproducibly"
