@@ -1,5 +1,7 @@
 """``taxel reconstruct`` given frames it cannot take: one line naming FRAME, no --out left."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -68,3 +70,16 @@ def test_a_noise_level_no_rule_uses_is_refused(frame_file, tmp_path, capsys, ext
     )
     assert not out.exists()
     assert main([*args, *extra, "--method", "support", "--noise-level", "1000"]) == 0
+
+
+def test_a_solve_that_did_not_converge_says_so_in_the_text(tmp_path, capsys):
+    # a frame of negative readings: nonneg gets nowhere in its 1000 iterations
+    frame, out = tmp_path / "frame.npy", tmp_path / "p.npy"
+    np.save(frame, np.full((16, 16), -1e3))
+    args = ["reconstruct", str(frame), "--sensor", "resistive16", "--method", "nonneg"]
+    assert main([*args, "--out", str(out), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["converged"] is False
+    assert main([*args, "--out", str(out), "--overwrite"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith("nonneg (order 0), lambda = ")
+    assert "NOT converged (not converged after 1000 iterations)" in lines[0]

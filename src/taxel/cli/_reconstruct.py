@@ -132,7 +132,7 @@ def _run(arguments: argparse.Namespace) -> int:
     else:
         text = (
             f"{result.method} (order {result.order}), lambda = "
-            f"{_format(first)} ({result.rule}{_bound_text(result)})"
+            f"{_format(first)} ({result.rule}{_bound_text(result)}){_unconverged_text(result)}"
             f"{_support_text(second, second_rule)}\n"
             f"residual norm {_format(result.residual_norm)}, "
             f"solution norm {_format(result.solution_norm)}, "
@@ -209,6 +209,13 @@ def _bound_text(result) -> str:
         return f", at its bound: the {why}"
     _, _, why = result.message.partition("found no mu with its target residual: ")  # tv
     return f", at its bound: no mu reaches the target, {why}" if why else ", at its bound"
+
+
+def _unconverged_text(result) -> str:
+    """', NOT converged (WHY)' for an iterative solve that stopped short, else ''."""
+    if np.all(result.converged):
+        return ""
+    return f", NOT converged ({result.message.split(';')[0]})"
 
 
 def _support_text(second: float | None, rule: str | None) -> str:
