@@ -113,6 +113,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         message = str(error).splitlines()[0] if str(error) else type(error).__name__
         sys.stderr.write(f"{_program(arguments)}: error: {message}\n")
         return EXIT_USAGE
+    except MemoryError as error:  # (a fine load grid on a small machine)
+        why = str(error).splitlines()[0] if str(error) else "MemoryError"
+        finer = "--oversampling or " if hasattr(arguments, "oversampling") else ""
+        sys.stderr.write(
+            f"{_program(arguments)}: error: not enough memory ({why}); a smaller {finer}"
+            "input needs less\n"
+        )
+        return EXIT_USAGE
     except KeyboardInterrupt:
         sys.stderr.write("taxel: interrupted\n")
         return 130
