@@ -20,6 +20,8 @@ __all__ = ["NPY_MAGIC", "ZIP_MAGIC", "check_header", "read_npz"]
 
 NPY_MAGIC = b"\x93NUMPY"
 ZIP_MAGIC = b"PK\x03\x04"
+# the end-of-archive record with which an archive of no members begins
+_EMPTY_ZIP_MAGIC = b"PK\x05\x06"
 # what a damaged archive raises besides BadZipFile: a corrupt deflate stream, a truncated
 # member, an unknown compression method, an encrypted member
 _ARCHIVE_ERRORS = (zipfile.BadZipFile, zlib.error, EOFError, NotImplementedError, RuntimeError)
@@ -68,6 +70,8 @@ def read_npz(stream: IO[bytes]) -> dict[str, np.ndarray]:
         raise ValueError("the file is empty")
     if start == NPY_MAGIC[: len(ZIP_MAGIC)]:
         raise ValueError("one array (.npy), not an .npz archive")
+    if start == _EMPTY_ZIP_MAGIC:
+        return {}  # a zip archive of no members: `np.savez(path)` with no arrays
     if start != ZIP_MAGIC:
         raise ValueError("not an .npz archive: a text or image file?")
     arrays = {}

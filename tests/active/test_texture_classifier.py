@@ -75,7 +75,7 @@ def test_save_refuses_to_overwrite(tmp_path):
     path = tmp_path / "model.json"
     path.write_text("precious")
     model = fit_texture_classifier(FEATURES, LABELS)
-    with pytest.raises(FileExistsError, match="model.json exists; pass overwrite=True"):
+    with pytest.raises(FileExistsError, match="`path` '.*model.json' exists; pass overwrite=True"):
         model.save(path)
     assert path.read_text() == "precious"
     model.save(path, overwrite=True)
@@ -110,6 +110,19 @@ def test_load_rejects_inconsistent_content(tmp_path):
         TextureClassifier.load(path)
     with pytest.raises(FileNotFoundError, match="no such file: .*absent.json"):
         TextureClassifier.load(tmp_path / "absent.json")
+
+
+@pytest.mark.parametrize("classes", [[], ["wool", "silk"], ["silk", "wool", "felt"], "silkwool"])
+def test_load_rejects_classes_other_than_its_labels(tmp_path, classes):
+    data = fit_texture_classifier(FEATURES, LABELS).to_dict()
+    assert data["classes"] == sorted(set(LABELS))
+    data["classes"] = classes
+    path = tmp_path / "model.json"
+    path.write_text(json.dumps(data))
+    with pytest.raises(
+        ValueError, match=r"'classes' .* are not those of its labels \['silk', 'wool'\]"
+    ):
+        TextureClassifier.load(path)
 
 
 @pytest.mark.parametrize(

@@ -86,7 +86,8 @@ def test_fit_refuses_to_overwrite_unless_forced(folders, tmp_path, capsys):
     assert main(["texture", "fit", str(train), "--out", str(model_path)]) == 2
     error = capsys.readouterr().err
     assert (
-        error == f"taxel texture fit: error: {model_path} exists; pass --overwrite to replace it\n"
+        error
+        == f"taxel texture fit: error: --out '{model_path}' exists; pass --overwrite to replace it\n"
     )
     assert model_path.read_text() == "keep me"
     assert main(["texture", "fit", str(train), "--out", str(model_path), "--overwrite"]) == 0

@@ -11,7 +11,7 @@ def test_write_frame_round_trip_and_refuses_to_overwrite(tmp_path):
     target = tmp_path / "frame.npy"
     write_frame(target, np.arange(6.0).reshape(2, 3))
     assert np.array_equal(read_frame(target), np.arange(6.0).reshape(2, 3))
-    with pytest.raises(FileExistsError, match="frame.npy exists"):
+    with pytest.raises(FileExistsError, match="`path` '.*frame.npy' exists; pass overwrite=True"):
         write_frame(target, np.zeros((2, 3)))
     assert read_frame(target)[1, 2] == 5.0  # untouched
     write_frame(target, np.zeros((2, 3)), overwrite=True)

@@ -205,7 +205,9 @@ def test_save_and_load(tmp_path, sensors):
     assert np.array_equal(again.valid, calibration.valid)
     raw = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, 1.5e3), rng=6).raw
     assert np.array_equal(again.apply(raw), calibration.apply(raw))
-    with pytest.raises(FileExistsError, match="reflective.npz exists"):
+    with pytest.raises(
+        FileExistsError, match="`path` '.*reflective.npz' exists; pass overwrite=True"
+    ):
         calibration.save(path)
     calibration.save(path, overwrite=True)
     with pytest.raises(ValueError, match="must end in .npz"):

@@ -178,11 +178,17 @@ class TextureClassifier:
             raise ValueError("texture classifier: inconsistent sizes of its arrays")
         if np.any(scale <= 0):
             raise ValueError("texture classifier: 'scale' must be > 0")
+        classes = tuple(sorted(set(labels)))
+        if not isinstance(data["classes"], list) or tuple(data["classes"]) != classes:
+            raise ValueError(
+                f"texture classifier: 'classes' {data['classes']!r:.60} are not those of its "
+                f"labels {list(classes)}"
+            )
         n_neighbors = data["n_neighbors"]
         if not isinstance(n_neighbors, int) or not 1 <= n_neighbors <= len(labels):
             raise ValueError(f"texture classifier: bad 'n_neighbors' {n_neighbors!r}")
         return cls(
-            classes=tuple(sorted(set(labels))),
+            classes=classes,
             examples=examples,
             labels=labels,
             center=center,

@@ -72,9 +72,19 @@ def _pick(path: Path, arrays: dict[str, np.ndarray], key: str | None) -> tuple[s
         if key not in arrays:
             raise ValueError(f"{path}: no array named {key!r}; the file holds: {names}")
         return key, arrays[key]
+    if not arrays:
+        raise ValueError(f"{path}: the archive holds no arrays")
     if len(arrays) != 1:
         raise ValueError(f"{path}: holds {len(arrays)} arrays ({names}); choose one with `key`")
     return next(iter(arrays.items()))
+
+
+# what OpenCV's unchanged read gives per channel count (a palette image is read as colour)
+_CHANNELS = {
+    2: " (grayscale with alpha)",
+    3: " (colour, or a palette image)",
+    4: " (colour or grayscale, with alpha)",
+}
 
 
 def _read_image(path: Path) -> np.ndarray:
@@ -93,8 +103,10 @@ def _read_image(path: Path) -> np.ndarray:
     if path.suffix.lower() in (".tif", ".tiff") and cv2.imcount(str(path)) > 1:
         raise ValueError(f"{path}: holds {cv2.imcount(str(path))} pages; a frame is one page")
     if image.ndim != 2:
+        count = image.shape[2]
         raise ValueError(
-            f"{path}: a tactile frame must be a grayscale image, got {image.shape[2]} channels"
+            f"{path}: a tactile frame must be a grayscale image, got {count} channels"
+            f"{_CHANNELS.get(count, '')}"
         )
     return image
 

@@ -86,7 +86,8 @@ def read_numeric_table(
     """
     path = check_file(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        # (utf-8-sig: a spreadsheet's byte-order mark is not part of the first field)
+        text = path.read_text(encoding="utf-8-sig")
     except UnicodeDecodeError:
         raise ValueError(f"{path}: not a text file (cannot decode it as UTF-8)") from None
     lines = text.splitlines()

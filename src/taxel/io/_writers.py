@@ -53,7 +53,8 @@ def check_new_file(
         # as given: Path("") reads as "."
         raise ValueError(f"{label} must name a {suffix} file, got {os.fspath(path)!r}")
     if not target.parent.is_dir():
-        raise ValueError(f"{label} is in a folder that does not exist: {str(target.parent)!r}")
+        what = "a file, not a folder" if target.parent.exists() else "a folder that does not exist"
+        raise ValueError(f"{label} is in {what}: {str(target.parent)!r}")
     if target.is_dir():
         raise ValueError(f"{label} {str(target)!r} is a folder; name a file")
     for source in inputs:
@@ -61,7 +62,7 @@ def check_new_file(
             raise ValueError(f"{label} {str(target)!r} is an input file; choose another")
     if target.exists() and not overwrite:
         how = "--overwrite" if name.startswith("--") else "overwrite=True"
-        raise FileExistsError(f"{target} exists; pass {how} to replace it")
+        raise FileExistsError(f"{label} {str(target)!r} exists; pass {how} to replace it")
     _check_folder_takes_files(target, label)
     return target
 

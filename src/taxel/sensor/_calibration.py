@@ -258,7 +258,9 @@ class Calibration:
         if path.suffix != ".npz":
             raise ValueError(f"`path` must end in .npz, got {str(path)!r}")
         if path.exists() and not overwrite:
-            raise FileExistsError(f"{path} exists; pass overwrite=True to replace it")
+            raise FileExistsError(
+                f"`path` {str(path)!r} exists; pass overwrite=True to replace it"
+            )
         meta = {
             "format": _FORMAT,
             "sensor_name": self.sensor_name,
