@@ -85,10 +85,8 @@ def test_fit_refuses_to_overwrite_unless_forced(folders, tmp_path, capsys):
     model_path.write_text("keep me")
     assert main(["texture", "fit", str(train), "--out", str(model_path)]) == 2
     error = capsys.readouterr().err
-    assert (
-        error
-        == f"taxel texture fit: error: --out '{model_path}' exists; pass --overwrite to replace it\n"
-    )
+    expected = f"--out '{model_path}' exists; pass --overwrite to replace it"
+    assert error == f"taxel texture fit: error: {expected}\n"
     assert model_path.read_text() == "keep me"
     assert main(["texture", "fit", str(train), "--out", str(model_path), "--overwrite"]) == 0
     assert TextureClassifier.load(model_path).n_neighbors == 1
