@@ -1,6 +1,7 @@
 """``taxel reconstruct``: writes the map, prints lambda and norms, one-line errors."""
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -29,6 +30,8 @@ def test_writes_the_pressure_map_and_reports(frame_file, tmp_path, capsys):
     assert "centre of pressure (x, y) = (" in text
     # the default rule: the discrepancy principle with the noise estimated from the frame
     assert "lambda = " in text and "(discrepancy)" in text and "residual norm" in text
+    # the norms in their units: readings in Pa, the order-1 penalty in Pa per load cell
+    assert re.search(r"residual norm [-+.e0-9]+ Pa, solution norm [-+.e0-9]+ Pa/cell, ", text)
 
 
 @pytest.mark.parametrize("method", ["tikhonov", "tsvd", "nonneg", "tv", "support"])

@@ -134,8 +134,8 @@ def _run(arguments: argparse.Namespace) -> int:
             f"{result.method} (order {result.order}), lambda = "
             f"{_format(first)} ({result.rule}{_bound_text(result)}){_unconverged_text(result)}"
             f"{_support_text(second, second_rule)}\n"
-            f"residual norm {_format(result.residual_norm)}, "
-            f"solution norm {_format(result.solution_norm)}, "
+            f"residual norm {_format(result.residual_norm)}{_unit(spec.reading_unit)}, "
+            f"solution norm {_format(result.solution_norm)}{_unit(_penalty_unit(result))}, "
             f"force {_format(result.normal_force)} N{_centre_text(centre)}\n"
             f"pressure map {result.pressure.shape} [Pa] written to {arguments.out}\n"
         )
@@ -248,6 +248,16 @@ def _centre_text(centroid) -> str:
 def _plain(value):
     array = np.asarray(value, dtype=float)
     return float(array) if array.ndim == 0 else array.tolist()
+
+
+def _unit(unit: str) -> str:
+    """A unit after a number, or nothing for a dimensionless one (a strain)."""
+    return f" {unit}" if unit else ""
+
+
+def _penalty_unit(result) -> str:
+    """The unit of |L x|: pressure per load cell to the penalty's order."""
+    return ("Pa", "Pa/cell", "Pa/cell^2")[result.order]
 
 
 def _format(values) -> str:
