@@ -74,10 +74,11 @@ from taxel.active._slip_signals import (
     cusum,
     matched_filter,
     motion_innovation,
+    position_noise,
     register,
     restore_charge,
-    robust_sigma,
     run_ahead,
+    step_noise,
 )
 
 __all__ = ["SlipDetection", "SlipDetector", "SlipEvent", "detect_slip"]
@@ -318,11 +319,8 @@ class SlipDetector:
         reference = frames[self.warm_up - 10 : self.warm_up].mean(axis=0)
         displacement = register(frames, reference, self.taxel_pitch)
         # per-frame noise of the position, from the warm-up about its own trend
-        held = displacement[1 : self.warm_up]
-        trend = np.polynomial.polynomial.polyfit(np.arange(held.shape[0]), held, 1)
-        residual = held - np.polynomial.polynomial.polyval(np.arange(held.shape[0]), trend).T
-        sigma = max(float(np.sqrt(np.mean(robust_sigma(residual) ** 2))), 1e-9)
-        sliding = float(np.linalg.norm(trend[1])) * rate > self.rest_speed
+        sigma, trend = position_noise(displacement, self.warm_up)
+        sliding = float(np.linalg.norm(trend)) * rate > self.rest_speed
         speed_statistic = run_ahead(displacement, sigma, self.warm_up, _REFERENCE, _GAP)
         late_statistic = run_ahead(displacement, sigma, self.warm_up, _REFERENCE, _LATE_GAP)
         piezo_statistic, onset_statistic = np.full(n, np.nan), np.full(n, np.nan)
@@ -368,8 +366,7 @@ class SlipDetector:
         flat = piezo.reshape(piezo.shape[0], -1).astype(float)
         if self.piezo_time_constant is not None:
             flat = restore_charge(flat, frame_rate=rate, time_constant=self.piezo_time_constant)
-        steps = np.diff(flat[: self.warm_up], axis=0)
-        sigma = float(robust_sigma(steps - np.median(steps, axis=0), axis=None)) / np.sqrt(2)
+        sigma = step_noise(flat[: self.warm_up])
         prediction = max(3, int(round(rate / self.cutoff)))
         return motion_innovation(
             flat, window=_DIRECTION, prediction=prediction, sigma=max(sigma, 1e-12)

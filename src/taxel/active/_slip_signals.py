@@ -1,14 +1,17 @@
 r"""The signals behind slip detection: pattern registration and the PVDF motion innovation.
 
-- `register`: the shift of the contact pattern of a static array from a held reference
-  image, by iterated Lucas-Kanade least squares over all taxels (with white readout noise of
-  equal variance on every taxel, the least-squares shift is the maximum-likelihood one).
+- `register` (`register_frame` for one frame): the shift of the contact pattern of a
+  static array from a held reference image, by iterated Lucas-Kanade least squares over all
+  taxels (with white readout noise of equal variance on every taxel, the least-squares
+  shift is the maximum-likelihood one).
 - `restore_charge`: undo the leak of a charge amplifier (eq. 25.17 with R_f across C_f, a
   first-order high-pass of time constant tau = R_f C_f), so that a PVDF frame reads the
   stress change since the first frame instead of a change that fades within tau.
 - `motion_innovation`: how far each PVDF frame departs from the stick-phase prediction,
   along the direction in which the contact pattern has been moving (see the notes there).
-- `run_ahead`: how far the registered pattern runs ahead of its extrapolated track.
+- `run_ahead` (`track_deviation` for one frame): how far the registered pattern runs
+  ahead of its extrapolated track.
+- `position_noise`, `step_noise`: the warm-up's noise levels (static and PVDF).
 - `cusum`: Page's one-sided CUSUM.
 - `matched_filter`: the correlation of a white N(0, 1) sequence with a known shape.
 """
@@ -21,13 +24,18 @@ import numpy as np
 from scipy import ndimage
 
 __all__ = [
+    "charge_leak",
     "cusum",
     "matched_filter",
     "motion_innovation",
+    "position_noise",
     "register",
+    "register_frame",
     "restore_charge",
     "robust_sigma",
     "run_ahead",
+    "step_noise",
+    "track_deviation",
 ]
 
 
@@ -41,24 +49,58 @@ def register(frames: np.ndarray, reference: np.ndarray, pitch: tuple[float, floa
     shifts = np.zeros((frames.shape[0], 2))
     estimate = np.zeros(2)  # (columns, rows) in taxels
     for index, frame in enumerate(frames):
-        for _ in range(4):
-            moved = ndimage.shift(reference, (estimate[1], estimate[0]), order=3, mode="nearest")
-            grad_y, grad_x = np.gradient(moved)
-            a = np.array(
-                [
-                    [(grad_x * grad_x).sum(), (grad_x * grad_y).sum()],
-                    [(grad_x * grad_y).sum(), (grad_y * grad_y).sum()],
-                ]
-            )
-            if np.linalg.det(a) <= 1e-12 * max(np.trace(a), 1e-300) ** 2:
-                break  # no contact pattern to follow
-            change = frame - moved
-            step = np.linalg.solve(a, [(grad_x * change).sum(), (grad_y * change).sum()])
-            estimate = estimate - step
-            if np.abs(step).max() < 1e-3:
-                break
+        estimate = register_frame(frame, reference, estimate)
         shifts[index] = estimate
     return shifts * np.array([pitch[1], pitch[0]])
+
+
+def register_frame(frame: np.ndarray, reference: np.ndarray, estimate: np.ndarray) -> np.ndarray:
+    """One frame's shift (columns, rows) [taxels] from the reference, starting at `estimate`.
+
+    The step of `register` for one frame (at most 4 Lucas-Kanade iterations), shared with
+    the online `SlipMonitor` so that both give the same numbers.
+    """
+    for _ in range(4):
+        moved = ndimage.shift(reference, (estimate[1], estimate[0]), order=3, mode="nearest")
+        grad_y, grad_x = np.gradient(moved)
+        a = np.array(
+            [
+                [(grad_x * grad_x).sum(), (grad_x * grad_y).sum()],
+                [(grad_x * grad_y).sum(), (grad_y * grad_y).sum()],
+            ]
+        )
+        if np.linalg.det(a) <= 1e-12 * max(np.trace(a), 1e-300) ** 2:
+            break  # no contact pattern to follow
+        change = frame - moved
+        step = np.linalg.solve(a, [(grad_x * change).sum(), (grad_y * change).sum()])
+        estimate = estimate - step
+        if np.abs(step).max() < 1e-3:
+            break
+    return estimate
+
+
+def position_noise(displacement: np.ndarray, warm_up: int) -> tuple[float, np.ndarray]:
+    """The position noise sigma [m] of one frame over the warm-up, and its trend [m/frame].
+
+    A line is fitted to the positions of frames 1 .. `warm_up` - 1; sigma is the robust
+    standard deviation about it (the root mean square of x and y, at least 1 nm), and the
+    line's slope (x, y) says whether the contact is held.
+    """
+    held = displacement[1:warm_up]
+    trend = np.polynomial.polynomial.polyfit(np.arange(held.shape[0]), held, 1)
+    residual = held - np.polynomial.polynomial.polyval(np.arange(held.shape[0]), trend).T
+    sigma = max(float(np.sqrt(np.mean(robust_sigma(residual) ** 2))), 1e-9)
+    return sigma, trend[1]
+
+
+def step_noise(frames: np.ndarray) -> float:
+    """Readout noise of one taxel from the frame-to-frame changes of (n, taxels) frames.
+
+    The median absolute deviation over all taxels of the changes about each taxel's median
+    change, divided by sqrt(2) (a change carries the noise of two frames).
+    """
+    steps = np.diff(frames, axis=0)
+    return float(robust_sigma(steps - np.median(steps, axis=0), axis=None)) / np.sqrt(2)
 
 
 def robust_sigma(values: np.ndarray, axis: int | None = 0) -> np.ndarray:
@@ -114,12 +156,17 @@ def restore_charge(frames: np.ndarray, *, frame_rate: float, time_constant: floa
     charge step of frame k, in output units; their running sum is the stress change since
     the first frames, whose mean is taken as the rest level.
     """
-    decay = np.exp(-1.0 / (frame_rate * time_constant))
-    gain = frame_rate * time_constant * (1.0 - decay)
+    decay, gain = charge_leak(frame_rate=frame_rate, time_constant=time_constant)
     level = frames - frames[: min(5, frames.shape[0])].mean(axis=0)
     steps = level.copy()
     steps[1:] -= decay * level[:-1]
     return np.cumsum(steps, axis=0) / gain
+
+
+def charge_leak(*, frame_rate: float, time_constant: float) -> tuple[float, float]:
+    """The amplifier's decay a per frame and gain g (see `restore_charge`)."""
+    decay = np.exp(-1.0 / (frame_rate * time_constant))
+    return float(decay), float(frame_rate * time_constant * (1.0 - decay))
 
 
 def motion_innovation(
@@ -197,19 +244,34 @@ def run_ahead(
     freedom) is used instead. NaN during the warm-up.
     """
     n = displacement.shape[0]
-    steps = np.arange(reference) - (reference - 1) / 2
-    lever = (reference - 1) / 2 + gap
     held = displacement[warm_up - 10 : warm_up].mean(axis=0)
     ahead = np.full(n, np.nan)
     for k in range(warm_up, n):
         window = displacement[k - gap - reference + 1 : k - gap + 1]
-        slope = steps @ window / (steps @ steps)
-        deviation = displacement[k] - (window.mean(axis=0) + lever * slope)
-        moved = displacement[k] - held
-        if np.linalg.norm(moved) > 3 * sigma:
-            ahead[k] = deviation @ moved / np.linalg.norm(moved) / sigma
-        else:
-            ahead[k] = np.linalg.norm(deviation) / sigma - 1.25
+        ahead[k] = track_deviation(window, displacement[k], held, sigma, reference, gap)
     smooth = ahead.copy()
     smooth[warm_up + 1 :] = 0.5 * (ahead[warm_up + 1 :] + ahead[warm_up:-1])
     return smooth
+
+
+def track_deviation(
+    window: np.ndarray,
+    position: np.ndarray,
+    held: np.ndarray,
+    sigma: float,
+    reference: int,
+    gap: int,
+) -> float:
+    """One frame's run-ahead before smoothing (see `run_ahead`), in noise units.
+
+    `window` holds the (reference, 2) positions [m] of the reference window, which ends
+    `gap` frames before the frame at `position`; `held` is the held position [m].
+    """
+    steps = np.arange(reference) - (reference - 1) / 2
+    lever = (reference - 1) / 2 + gap
+    slope = steps @ window / (steps @ steps)
+    deviation = position - (window.mean(axis=0) + lever * slope)
+    moved = position - held
+    if np.linalg.norm(moved) > 3 * sigma:
+        return float(deviation @ moved / np.linalg.norm(moved) / sigma)
+    return float(np.linalg.norm(deviation) / sigma - 1.25)
