@@ -48,6 +48,7 @@ def test_public_names():
         "SlipDetector",
         "SlipEvaluation",
         "SlipEvent",
+        "SlipMonitor",
         "SlipScenario",
         "SlipSequence",
         "TOUCH_FEATURES",

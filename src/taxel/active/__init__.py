@@ -14,7 +14,8 @@ corner_probing_trial, CornerTrial
 
 Slip: incipient and gross, from pattern displacement and a PVDF array
 --------------------------------------------------------------------
-SlipDetector, detect_slip, SlipDetection, SlipEvent; hold-then-slip simulation:
+SlipDetector, detect_slip, SlipDetection, SlipEvent; online, one frame at a time in a
+sensor loop: SlipMonitor; hold-then-slip simulation:
 SlipScenario, random_slip_scenario, simulate_slip, SlipSequence, slip_sensors,
 SLIP_DISPLACEMENT, ANNULUS_GROWTH; scoring: slip_trials, score_slip_detection,
 evaluate_slip_detection, SlipEvaluation; thresholds for a false-alarm budget:
@@ -115,6 +116,7 @@ from taxel.active._slip_evaluation import (
     score_slip_detection,
     slip_trials,
 )
+from taxel.active._slip_monitor import SlipMonitor
 from taxel.active._slip_simulation import (
     ANNULUS_GROWTH,
     SLIP_DISPLACEMENT,
@@ -192,6 +194,7 @@ __all__ = [
     "SlipDetector",
     "SlipEvaluation",
     "SlipEvent",
+    "SlipMonitor",
     "SlipScenario",
     "SlipSequence",
     "TextureClassifier",
