@@ -179,3 +179,28 @@ def test_refusals_name_the_parameter():
     static_only.push(np.ones((16, 16)))
     with pytest.raises(ValueError, match=r"`piezo_frame` must be None: .* shape \(8, 8\)"):
         static_only.push(np.ones((16, 16)), np.zeros((8, 8)))
+
+
+def test_spline_shifter_is_ndimage_shift_to_the_last_bit(monkeypatch):
+    from scipy import ndimage
+    from scipy.ndimage import _nd_image
+
+    from taxel.active._spline_shift import spline_shifter
+
+    rng = np.random.default_rng(5)
+    reference = rng.normal(500.0, 100.0, (16, 12))
+    shifted = spline_shifter(reference)
+    assert shifted.__qualname__ == "spline_shifter.<locals>.shifted"  # the fast path
+    for rows, cols in rng.normal(0.0, 3.0, (200, 2)):
+        expected = ndimage.shift(reference, (rows, cols), order=3, mode="nearest")
+        np.testing.assert_array_equal(shifted(rows, cols), expected)
+
+    def changed(*arguments):
+        raise TypeError("zoom_shift() takes 10 arguments")
+
+    monkeypatch.setattr(_nd_image, "zoom_shift", changed)  # a SciPy whose kernel changed
+    slow = spline_shifter(reference)
+    monkeypatch.undo()
+    assert slow.__qualname__ == "_slow.<locals>.shifted"
+    expected = ndimage.shift(reference, (0.3, -1.2), order=3, mode="nearest")
+    np.testing.assert_array_equal(slow(0.3, -1.2), expected)

@@ -52,6 +52,7 @@ from taxel.active._slip_signals import (
     step_noise,
     track_deviation,
 )
+from taxel.active._spline_shift import spline_shifter
 
 __all__ = ["SlipMonitor"]
 
@@ -255,11 +256,12 @@ class SlipMonitor:
         warm_up = detector.warm_up
         pitch = detector.taxel_pitch
         self._scale = np.array([pitch[1], pitch[0]])
-        self._reference = self._warm_static[warm_up - _HELD : warm_up].mean(axis=0)
+        reference = self._warm_static[warm_up - _HELD : warm_up].mean(axis=0)
+        self._shifted = spline_shifter(reference)
         shifts = np.zeros((warm_up, 2))
         estimate = np.zeros(2)
         for index, frame in enumerate(self._warm_static):
-            estimate = register_frame(frame, self._reference, estimate)
+            estimate = register_frame(frame, self._shifted, estimate)
             shifts[index] = estimate
         self._estimate = estimate
         displacement = shifts * self._scale
@@ -326,7 +328,7 @@ class SlipMonitor:
     def _step(
         self, index: int, frame: np.ndarray, piezo: np.ndarray | None
     ) -> tuple[SlipEvent, ...]:
-        self._estimate = register_frame(frame, self._reference, self._estimate)
+        self._estimate = register_frame(frame, self._shifted, self._estimate)
         position = self._estimate * self._scale
         self.displacement = position
         self._positions.push(position)

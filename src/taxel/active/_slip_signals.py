@@ -18,11 +18,13 @@ r"""The signals behind slip detection: pattern registration and the PVDF motion 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from functools import lru_cache
 from typing import Any
 
 import numpy as np
-from scipy import ndimage
+
+from taxel.active._spline_shift import spline_shifter
 
 __all__ = [
     "charge_leak",
@@ -49,20 +51,24 @@ def register(frames: np.ndarray, reference: np.ndarray, pitch: tuple[float, floa
     """
     shifts = np.zeros((frames.shape[0], 2))
     estimate = np.zeros(2)  # (columns, rows) in taxels
+    shifted = spline_shifter(reference)
     for index, frame in enumerate(frames):
-        estimate = register_frame(frame, reference, estimate)
+        estimate = register_frame(frame, shifted, estimate)
         shifts[index] = estimate
     return shifts * np.array([pitch[1], pitch[0]])
 
 
-def register_frame(frame: np.ndarray, reference: np.ndarray, estimate: np.ndarray) -> np.ndarray:
+def register_frame(
+    frame: np.ndarray, shifted: Callable[[float, float], np.ndarray], estimate: np.ndarray
+) -> np.ndarray:
     """One frame's shift (columns, rows) [taxels] from the reference, starting at `estimate`.
 
     The step of `register` for one frame (at most 4 Lucas-Kanade iterations), shared with
-    the online `SlipMonitor` so that both give the same numbers.
+    the online `SlipMonitor` so that both give the same numbers; `shifted` re-samples the
+    reference image at a shift (rows, cols) [taxels] (`spline_shifter`).
     """
     for _ in range(4):
-        moved = ndimage.shift(reference, (estimate[1], estimate[0]), order=3, mode="nearest")
+        moved = shifted(estimate[1], estimate[0])
         grad_y, grad_x = _gradient(moved)
         a = np.array(
             [
