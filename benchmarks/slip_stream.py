@@ -27,19 +27,24 @@ SEED = 2024  # the evaluation trials of the slip benchmark (bench_probing.py)
 FRAME_PERIOD = 1e-3  # [s] at 1 kHz
 
 
-def _stream(detector: SlipDetector, sequence, with_piezo: bool) -> tuple[bool, np.ndarray, float]:
-    """Push a trial's frames one by one: (same events as the batch?, times [s], warm-up end)."""
+def _stream(detector: SlipDetector, sequence, with_piezo: bool) -> tuple:
+    """Push a trial's frames one by one.
+
+    Returns (same events as the batch?, wall-clock times [s], CPU times [s], the last
+    warm-up frame's wall-clock time [s]); the times are those after the warm-up.
+    """
     piezo = sequence.piezo_frames if with_piezo else None
     batch = detector.run(sequence.static_frames, piezo, frame_rate=sequence.frame_rate)
     monitor = SlipMonitor(detector, frame_rate=sequence.frame_rate)
-    times = np.empty(sequence.static_frames.shape[0])
+    times = np.empty((sequence.static_frames.shape[0], 2))
     for index, frame in enumerate(sequence.static_frames):
         other = None if piezo is None else piezo[index]
-        started = time.perf_counter()
+        wall, cpu = time.perf_counter(), time.thread_time()
         monitor.push(frame, other)
-        times[index] = time.perf_counter() - started
+        times[index] = time.perf_counter() - wall, time.thread_time() - cpu
     warm_up = detector.warm_up
-    return monitor.events == batch.events, times[warm_up:], float(times[warm_up - 1])
+    same = monitor.events == batch.events
+    return same, times[warm_up:, 0], times[warm_up:, 1], float(times[warm_up - 1, 0])
 
 
 def section(quick: bool) -> str:
@@ -58,11 +63,13 @@ def section(quick: bool) -> str:
         same = sum(result[0] for result in results)
         agreements.append(same)
         times = np.concatenate([result[1] for result in results]) * 1e3
-        ends = np.array([result[2] for result in results]) * 1e3
+        cpu = np.concatenate([result[2] for result in results]) * 1e3
+        ends = np.array([result[3] for result in results]) * 1e3
         over = np.mean(times > FRAME_PERIOD * 1e3) * 100
         rows.append(
             f"| {name} | {times.size} | {np.median(times):.3f} | "
             f"{np.percentile(times, 99):.3f} | {times.max():.3f} | {over:.2f} | "
+            f"{np.median(cpu):.3f} / {np.percentile(cpu, 99):.3f} | "
             f"{np.median(ends):.1f} | {same} / {len(sequences)} |"
         )
     machine = platform.processor() or platform.machine()
@@ -76,13 +83,14 @@ def section(quick: bool) -> str:
             " resistive16 static frames and piezo8x8 PVDF frames at 1 kHz, default thresholds "
             "(the PVDF amplifiers' time constant given). Each frame is pushed as a robot's loop "
             "would; the time of each push is wall clock (`time.perf_counter`) on one core "
-            "(OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1), after the warm-up. The last warm-up "
+            "(OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1), after the warm-up; the CPU time "
+            "(`time.thread_time`) leaves out what other processes took. The last warm-up "
             "frame registers all 40 warm-up frames at once (the reference image is known only "
             "then) and is listed on its own. Agreement: the trials whose events (kind, frame, "
             "time, channel) are identical to `SlipDetector.run` on the whole sequence.\n",
             "| frames | pushes timed | median [ms] | p99 [ms] | max [ms] | over 1 ms [%] | "
-            "last warm-up frame, median [ms] | same events as batch |",
-            "|---|---|---|---|---|---|---|---|",
+            "CPU median / p99 [ms] | last warm-up frame, median [ms] | same events as batch |",
+            "|---|---|---|---|---|---|---|---|---|",
             *rows,
             "",
             f"Frame period: {FRAME_PERIOD * 1e3:.0f} ms. Machine: {machine}, Python "
