@@ -90,7 +90,8 @@ class SlipMonitor:
     ----------
     detector : SlipDetector, optional
         Its settings (thresholds, warm-up, PVDF time constant) are read when the monitor is
-        made; default `SlipDetector()`.
+        made; default `SlipDetector()`. Its `warm_up` must be at least 26 frames (the late
+        channel's first reference window; `SlipDetector.run` fails below that too).
     frame_rate : float
         [Hz].
 
