@@ -202,8 +202,17 @@ def test_score_counts_detections_and_false_alarms(slip, hold, steady):
 
 
 def test_bad_inputs_raise():
-    with pytest.raises(ValueError, match="`warm_up` must be an integer >= 20, got 5"):
+    with pytest.raises(ValueError, match="`warm_up` must be an integer >= 26, got 5"):
         SlipDetector(warm_up=5)
+    # the late channel's first reference window (15 frames, ending 12 before) must start
+    # within the sequence: 25 failed in `run` with NumPy's matmul message
+    with pytest.raises(ValueError, match="`warm_up` must be an integer >= 26, got 25"):
+        SlipDetector(warm_up=25)
+    rows, cols = np.mgrid[:16, :16] * 2e-3
+    centre = np.where(np.arange(120) < 60, 0.0, 30e-3 * (np.arange(120) - 60) / 1000)
+    blob = np.exp(-((cols - 15e-3 - centre[:, None, None]) ** 2 + (rows - 15e-3) ** 2) / 32e-6)
+    events = SlipDetector(warm_up=26).run(blob, frame_rate=1000.0).events
+    assert [(event.kind, event.frame) for event in events] == [("incipient", 61), ("gross", 61)]
     with pytest.raises(ValueError, match="`gross_threshold` must be > 0"):
         SlipDetector(gross_threshold=0.0)
     with pytest.raises(ValueError, match="more than `warm_up` = 40 frames, got 30"):

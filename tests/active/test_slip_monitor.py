@@ -147,8 +147,10 @@ def test_refusals_name_the_parameter():
         SlipMonitor("fast", frame_rate=1000.0)
     with pytest.raises(ValueError, match="`frame_rate` must be > 0, got 0"):
         SlipMonitor(SlipDetector(), frame_rate=0.0)
+    detector = SlipDetector()
+    detector.warm_up = 20  # (SlipDetector(warm_up=20) is refused when made)
     with pytest.raises(ValueError, match="`warm_up` >= 26 frames, got 20"):
-        SlipMonitor(SlipDetector(warm_up=20), frame_rate=1000.0)
+        SlipMonitor(detector, frame_rate=1000.0)
     monitor = SlipMonitor(frame_rate=1000.0)
     with pytest.raises(ValueError, match="`static_frame` must have at least 2 rows"):
         monitor.push(np.ones((1, 16)))

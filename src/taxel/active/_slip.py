@@ -96,6 +96,7 @@ ONSET_TEMPLATE = (0.7, 1.2, -0.5, -2.5, -2.2, -0.3)
 _REFERENCE = 15  # frames in the reference window of the speed
 _GAP = 3  # frames between the reference window and the current frame
 _LATE_GAP = 12  # the same for the late channel (1.5 times the slowest friction relaxation)
+_LEAST_WARM_UP = _REFERENCE + _LATE_GAP - 1
 _DIRECTION = 20  # frames over which the PVDF pattern's direction of motion is taken
 
 
@@ -258,10 +259,9 @@ class SlipDetector:
         for value in np.broadcast_to(pitch, (2,)):
             check_positive("taxel_pitch", value)
         self.taxel_pitch = (float(pitch[0]), float(pitch[-1]))
-        if not is_whole(warm_up) or warm_up < _REFERENCE + _GAP + 2:
-            raise ValueError(
-                f"`warm_up` must be an integer >= {_REFERENCE + _GAP + 2}, got {warm_up!r}"
-            )
+        # the late channel's first reference window must start within the sequence
+        if not is_whole(warm_up) or warm_up < _LEAST_WARM_UP:
+            raise ValueError(f"`warm_up` must be an integer >= {_LEAST_WARM_UP}, got {warm_up!r}")
         self.warm_up = int(warm_up)
         self.incipient_threshold = check_positive("incipient_threshold", incipient_threshold)
         self.gross_threshold = check_positive("gross_threshold", gross_threshold)

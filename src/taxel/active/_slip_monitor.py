@@ -39,6 +39,7 @@ from taxel.active._slip import (
     _DIRECTION,
     _GAP,
     _LATE_GAP,
+    _LEAST_WARM_UP,
     _REFERENCE,
     ONSET_TEMPLATE,
     SlipDetector,
@@ -144,11 +145,9 @@ class SlipMonitor:
             detector = SlipDetector()
         if not isinstance(detector, SlipDetector):
             raise TypeError(f"`detector` must be a SlipDetector, got {detector!r}")
-        if detector.warm_up < _REFERENCE + _LATE_GAP - 1:
-            # the late channel's first reference window would start before the first frame
-            # (SlipDetector.run fails on such a detector too)
+        if detector.warm_up < _LEAST_WARM_UP:  # (set after the detector was made)
             raise ValueError(
-                f"`detector` must have `warm_up` >= {_REFERENCE + _LATE_GAP - 1} frames, "
+                f"`detector` must have `warm_up` >= {_LEAST_WARM_UP} frames, "
                 f"got {detector.warm_up}"
             )
         self.detector = copy.copy(detector)
