@@ -9,6 +9,7 @@ from __future__ import annotations
 import sys
 import time
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 
@@ -24,6 +25,9 @@ from taxel.active import (
 )
 from taxel.active._slip_frames import sensed_stress
 from taxel.active._slip_simulation import _master_contact
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import slip_stream  # (beside this file)
 
 CALIBRATION_SEEDS = (101, 303)  # the slip thresholds are set on these trials (60/30/30 each)
 TEST_SEED = 2024
@@ -387,14 +391,16 @@ def _texture(quick: bool) -> list[str]:
 
 
 def run(quick: bool = False) -> str:
-    """Run the four studies; return a Markdown section."""
+    """Run the studies (slip offline and online); return a Markdown section."""
     parts = [
         "## Active probing: plane, corner, slip, texture (issue 6)\n",
         "Simulated trials with known answers; `taxel.active` procedures on a "
         "`SimulatedFinger`. " + ("Quick run: fewer trials. " if quick else "") + "\n",
     ]
-    for study in (_plane, _corner, _slip, _texture):
+    for study in (_plane, _corner, _slip):
         parts += study(quick)
+    parts += ["", slip_stream.section(quick), ""]
+    parts += _texture(quick)
     return "\n".join(parts)
 
 
