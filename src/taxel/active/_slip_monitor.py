@@ -91,8 +91,8 @@ class SlipMonitor:
     ----------
     detector : SlipDetector, optional
         Its settings (thresholds, warm-up, PVDF time constant) are read when the monitor is
-        made; default `SlipDetector()`. Its `warm_up` must be at least 26 frames (the late
-        channel's first reference window; `SlipDetector.run` fails below that too).
+        made; default `SlipDetector()`. Its `warm_up` must still be at least 26 frames (the
+        least a `SlipDetector` takes) if it was changed after the detector was made.
     frame_rate : float
         [Hz].
 
