@@ -143,14 +143,19 @@ def test_a_complex_number_is_not_a_real_number(value):
         (np.array(["1", "2"]), "text"),
         (["1", "2"], "text"),
         (True, "True"),
-        (np.array([True, False]), "booleans"),
-        ([True, False], "booleans"),
     ],
 )
-def test_text_and_booleans_are_not_numeric_arrays(value, what):
-    # "1.5" was read as 1.5 and a mask as 0/1 without a word
+def test_text_and_a_lone_bool_are_not_numeric_arrays(value, what):
+    # "1.5" was read as 1.5 without a word
     with pytest.raises(TypeError, match=f"`x` must be numeric, got {what}"):
         as_finite_array("x", value)
+
+
+@pytest.mark.parametrize("mask", [np.array([[True, False], [False, True]]), [[True, False]]])
+def test_an_array_of_booleans_is_a_mask_of_zeros_and_ones(mask):
+    array = as_finite_array("x", mask)
+    assert array.dtype == np.float64
+    assert np.array_equal(array, np.asarray(mask, dtype=float))
 
 
 def test_a_choice_must_be_text():

@@ -118,7 +118,9 @@ def as_finite_array(name: str, value: Any, *, ndim: int | None = None) -> np.nda
     """Return `value` as a float64 array, or raise when it has NaN/inf or the wrong ndim.
 
     A complex array is refused (NumPy would drop its imaginary part with a warning only),
-    and so are text ("1" would be read as 1.0) and booleans (True as 1.0): almost always slips.
+    and so are text ("1" would be read as 1.0) and a lone bool (True as 1.0): almost always
+    slips. An array of booleans is a mask, read as 0 and 1 (a binary tactile image, a load
+    pattern).
     """
     refuse_complex(name, value)
     if isinstance(value, str | bytes | bool | np.bool_):
@@ -129,9 +131,8 @@ def as_finite_array(name: str, value: Any, *, ndim: int | None = None) -> np.nda
             kind = np.asarray(value).dtype.kind
         except (TypeError, ValueError):
             kind = None
-    if kind in ("U", "S", "b"):
-        what = "booleans" if kind == "b" else "text"
-        raise TypeError(f"`{name}` must be numeric, got {what}: {_short(value)}")
+    if kind in ("U", "S"):
+        raise TypeError(f"`{name}` must be numeric, got text: {_short(value)}")
     try:
         array = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError):

@@ -96,6 +96,24 @@ def test_online_events_are_the_batch_events(trials, name):
         assert first[0].kind == "incipient"
 
 
+def test_integer_frames_a_reset_and_a_longer_warm_up(trials):
+    # raw ADC codes in a driver's narrower integers, a second grasp on the same monitor
+    # after reset(), and a warm-up other than the default: still the batch's events
+    slip = trials[0]
+    codes, charges = slip.static_frames.astype(np.int32), slip.piezo_frames.astype(np.int16)
+    assert np.array_equal(charges, slip.piezo_frames)  # (12-bit codes: no overflow)
+    detector = SlipDetector(piezo_time_constant=_time_constant(), warm_up=60)
+    batch = detector.run(codes, charges, frame_rate=slip.frame_rate)
+    assert batch.events and batch.events[-1].kind == "gross"
+    monitor = SlipMonitor(detector, frame_rate=slip.frame_rate)
+    for grasp in range(2):
+        for frame, charge in zip(codes, charges, strict=True):
+            monitor.push(frame, charge)
+        assert monitor.events == batch.events, grasp
+        monitor.reset()
+        assert monitor.state == "warming up" and monitor.events == ()
+
+
 @pytest.mark.parametrize("with_piezo", [True, False])
 def test_fixture_trials_and_refused_frames(slip, hold, with_piezo):
     # the shared slip trial (its onset channel is pinned in test_slip_onset) and a hold,
@@ -149,7 +167,10 @@ def test_refusals_name_the_parameter():
         SlipMonitor(SlipDetector(), frame_rate=0.0)
     detector = SlipDetector()
     detector.warm_up = 20  # (SlipDetector(warm_up=20) is refused when made)
-    with pytest.raises(ValueError, match="`warm_up` >= 26 frames, got 20"):
+    with pytest.raises(ValueError, match="an integer `warm_up` >= 26 frames, got 20"):
+        SlipMonitor(detector, frame_rate=1000.0)
+    detector.warm_up = 30.5
+    with pytest.raises(ValueError, match="an integer `warm_up` >= 26 frames, got 30.5"):
         SlipMonitor(detector, frame_rate=1000.0)
     monitor = SlipMonitor(frame_rate=1000.0)
     with pytest.raises(ValueError, match="`static_frame` must have at least 2 rows"):

@@ -41,6 +41,15 @@ def test_blank_image_draws():
     assert figure.axes[0].get_title() == "none, 0 hole(s), 0 slot(s)"
 
 
+def test_a_binary_mask_draws_as_extract_reads_it():
+    # a switch-matrix sensor's frame: contact or not, as booleans
+    mask = _washer() > 0
+    features = extract(mask, 1e-3)
+    assert features.holes.count == 1
+    figure = plot_features(mask, features, 1e-3)
+    assert figure.axes[0].get_title() == f"{features.contact_type}, 1 hole(s), 0 slot(s)"
+
+
 def _washer(size=48):
     y, x = np.mgrid[:size, :size]
     r = np.hypot(x - size / 2, y - size / 2)

@@ -71,6 +71,7 @@ import numpy as np
 from taxel._validation import as_finite_array, check_positive
 from taxel.active._counts import is_whole
 from taxel.active._slip_signals import (
+    HELD_FRAMES,
     cusum,
     matched_filter,
     motion_innovation,
@@ -316,7 +317,7 @@ class SlipDetector:
             raise ValueError(
                 f"`static_frames` must hold more than `warm_up` = {self.warm_up} frames, got {n}"
             )
-        reference = frames[self.warm_up - 10 : self.warm_up].mean(axis=0)
+        reference = frames[self.warm_up - HELD_FRAMES : self.warm_up].mean(axis=0)
         displacement = register(frames, reference, self.taxel_pitch)
         # per-frame noise of the position, from the warm-up about its own trend
         sigma, trend = position_noise(displacement, self.warm_up)
@@ -381,7 +382,7 @@ class SlipDetector:
         displacement, sigma = detection.displacement, detection.position_noise
         speed_statistic, piezo_statistic = detection.speed_statistic, detection.piezo_statistic
         rate = detection.frame_rate
-        held = displacement[self.warm_up - 10 : self.warm_up].mean(axis=0)
+        held = displacement[self.warm_up - HELD_FRAMES : self.warm_up].mean(axis=0)
         cumulative = np.cumsum(displacement - held, axis=0)
         mean3 = np.full(displacement.shape[0], 0.0)
         mean3[3:] = np.linalg.norm(cumulative[3:] - cumulative[:-3], axis=1) / 3.0

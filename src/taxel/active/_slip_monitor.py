@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 
 from taxel._validation import as_finite_array, check_positive
+from taxel.active._counts import is_whole
 from taxel.active._slip import (
     _DIRECTION,
     _GAP,
@@ -46,6 +47,7 @@ from taxel.active._slip import (
     SlipEvent,
 )
 from taxel.active._slip_signals import (
+    HELD_FRAMES,
     charge_leak,
     motion_innovation,
     position_noise,
@@ -56,8 +58,6 @@ from taxel.active._slip_signals import (
 from taxel.active._spline_shift import spline_shifter
 
 __all__ = ["SlipMonitor"]
-
-_HELD = 10  # warm-up frames averaged into the reference image and the held position
 
 
 class _Recent:
@@ -106,7 +106,8 @@ class SlipMonitor:
     position_noise : float
         Standard deviation of one frame's pattern position over the warm-up [m] (NaN before).
     displacement : numpy.ndarray or None
-        (2,) the last frame's pattern displacement from the held reference (x, y) [m].
+        (2,) the last frame's pattern displacement from the held reference (x, y) [m];
+        None during the warm-up.
     speed_statistic, late_statistic, piezo_statistic, onset_statistic : float
         The last frame's statistics, as in `SlipDetection` (NaN during the warm-up, and the
         PVDF ones without PVDF frames).
@@ -145,10 +146,11 @@ class SlipMonitor:
             detector = SlipDetector()
         if not isinstance(detector, SlipDetector):
             raise TypeError(f"`detector` must be a SlipDetector, got {detector!r}")
-        if detector.warm_up < _LEAST_WARM_UP:  # (set after the detector was made)
+        if not is_whole(detector.warm_up) or detector.warm_up < _LEAST_WARM_UP:
+            # (changed after the detector was made, which checks it)
             raise ValueError(
-                f"`detector` must have `warm_up` >= {_LEAST_WARM_UP} frames, "
-                f"got {detector.warm_up}"
+                f"`detector` must have an integer `warm_up` >= {_LEAST_WARM_UP} frames, "
+                f"got {detector.warm_up!r}"
             )
         self.detector = copy.copy(detector)
         self.frame_rate = check_positive("frame_rate", frame_rate)
@@ -256,7 +258,7 @@ class SlipMonitor:
         warm_up = detector.warm_up
         pitch = detector.taxel_pitch
         self._scale = np.array([pitch[1], pitch[0]])
-        reference = self._warm_static[warm_up - _HELD : warm_up].mean(axis=0)
+        reference = self._warm_static[warm_up - HELD_FRAMES : warm_up].mean(axis=0)
         self._shifted = spline_shifter(reference)
         shifts = np.zeros((warm_up, 2))
         estimate = np.zeros(2)
@@ -269,7 +271,7 @@ class SlipMonitor:
         sliding = float(np.linalg.norm(trend)) * rate > detector.rest_speed
         self.initial_state = "sliding" if sliding else "holding"
         self.position_noise = sigma
-        self._held = displacement[warm_up - _HELD : warm_up].mean(axis=0)
+        self._held = displacement[warm_up - HELD_FRAMES : warm_up].mean(axis=0)
         self._limit = detector.incipient_threshold * sigma / np.sqrt(3.0)
         self._positions = _Recent(_REFERENCE + _LATE_GAP + 1, (2,))
         self._sums = _Recent(4, (2,))
@@ -371,12 +373,11 @@ class SlipMonitor:
             row = self._restore(row)
         self._restored.push(row)
         z = self._innovation(self._restored.rows)[-1] if self._restored.full else np.nan
-        squared = z * z - 1.0
-        self._cusum = max(
-            0.0, self._cusum + (0.0 if np.isnan(squared) else squared) - self.detector.drift
-        )
+        # (NaN as 0 and infinities as the largest doubles, as the batch's `np.nan_to_num`)
+        squared = float(np.nan_to_num(z * z - 1.0))
+        self._cusum = max(0.0, self._cusum + squared - self.detector.drift)
         self.piezo_statistic = float(self._cusum)
-        self._innovations.push(0.0 if np.isnan(z) else z)
+        self._innovations.push(np.nan_to_num(z))
         values = self._innovations.rows
         total = sum(weight * values[i] for i, weight in enumerate(self._template))
         self.onset_statistic = float(total / self._template_norm)

@@ -27,6 +27,7 @@ import numpy as np
 from taxel.active._spline_shift import spline_shifter
 
 __all__ = [
+    "HELD_FRAMES",
     "charge_leak",
     "cusum",
     "matched_filter",
@@ -40,6 +41,9 @@ __all__ = [
     "step_noise",
     "track_deviation",
 ]
+
+# the last warm-up frames averaged into the reference image and the held position
+HELD_FRAMES = 10
 
 
 def register(frames: np.ndarray, reference: np.ndarray, pitch: tuple[float, float]) -> np.ndarray:
@@ -275,7 +279,7 @@ def run_ahead(
     freedom) is used instead. NaN during the warm-up.
     """
     n = displacement.shape[0]
-    held = displacement[warm_up - 10 : warm_up].mean(axis=0)
+    held = displacement[warm_up - HELD_FRAMES : warm_up].mean(axis=0)
     ahead = np.full(n, np.nan)
     for k in range(warm_up, n):
         window = displacement[k - gap - reference + 1 : k - gap + 1]
