@@ -10,6 +10,7 @@ import argparse
 from collections.abc import Callable
 
 from taxel.cli import _active_procedures as procedures
+from taxel.cli import _active_slip
 from taxel.cli._arguments import (
     DEFORMATION_OBJECTS,
     MODEL_NAMES,
@@ -235,3 +236,4 @@ def register(commands: argparse._SubParsersAction) -> None:
         metavar="LIBRARY.json",
         help="model library: loaded if it exists, else built and saved",
     )
+    _active_slip.register(group)
