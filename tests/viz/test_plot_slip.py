@@ -174,3 +174,12 @@ def test_bad_arguments_are_named(detection, keywords, error, message):
 def test_axes_of_two_figures_are_refused(detection):
     with pytest.raises(ValueError, match=r"`ax` must be two Axes of one figure"):
         plot_slip(detection, ax=(Figure().subplots(), Figure().subplots()))
+
+
+def test_a_contact_sliding_from_the_start_says_no_onset_is_reported(frames):
+    sliding = detect_slip(frames[60:], frame_rate=RATE)
+    assert sliding.initial_state == "sliding" and sliding.events == ()
+    upper, lower = plot_slip(sliding).axes
+    assert "initial state sliding (no onset is reported)" in upper.get_title()
+    labels = [text.get_text() for text in lower.get_legend().get_texts()]
+    assert "late run-ahead (never armed), threshold 15.5 dashed" in labels

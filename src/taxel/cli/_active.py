@@ -1,7 +1,8 @@
 """``taxel active ...``: the active-touch procedures on a simulated finger, as subcommands.
 
 Each subcommand runs one procedure of `taxel.active` in simulation, with the object's truth
-known, and prints what was measured against the truth (`taxel.cli._active_procedures`).
+known, and prints what was measured against the truth (`taxel.cli._active_procedures`);
+``slip`` instead reads a recorded sequence of frames (`taxel.cli._active_slip`).
 """
 
 from __future__ import annotations

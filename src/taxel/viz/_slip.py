@@ -138,8 +138,11 @@ def plot_slip(
     lower.set_xlim(milliseconds[0], milliseconds[-1])
     for axes in (upper, lower):  # beside the axes: the statistics fill their panel
         axes.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
+    state = detection.initial_state
+    if state != "holding":  # `SlipDetector.decide` reports no onset then
+        state += " (no onset is reported)"
     upper.set_title(
-        f"{n} frames at {detection.frame_rate:g} Hz; initial state {detection.initial_state}; "
+        f"{n} frames at {detection.frame_rate:g} Hz; initial state {state}; "
         f"position noise {detection.position_noise * 1e6:.3g} um",
         fontsize=10,
         pad=12,  # above the truth's triangles
