@@ -18,6 +18,7 @@ r"""The signals behind slip detection: pattern registration and the PVDF motion 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from functools import lru_cache
 from typing import Any
@@ -71,21 +72,21 @@ def register_frame(
     the online `SlipMonitor` so that both give the same numbers; `shifted` re-samples the
     reference image at a shift (rows, cols) [taxels] (`spline_shifter`).
     """
+    rows = np.empty((3, frame.size))  # the gradients and the change, one row each
     for _ in range(4):
         moved = shifted(estimate[1], estimate[0])
-        grad_y, grad_x = _gradient(moved)
-        a = np.array(
-            [
-                [(grad_x * grad_x).sum(), (grad_x * grad_y).sum()],
-                [(grad_x * grad_y).sum(), (grad_y * grad_y).sum()],
-            ]
-        )
-        if np.linalg.det(a) <= 1e-12 * max(np.trace(a), 1e-300) ** 2:
+        _gradient(moved, rows[1].reshape(moved.shape), rows[0].reshape(moved.shape))
+        np.subtract(frame.ravel(), moved.ravel(), out=rows[2])
+        # every sum the step needs in one product: [[xx, xy, xc], [., yy, yc], ...]
+        sums = (rows[:2] @ rows.T).tolist()
+        (xx, xy, xc), (_, yy, yc) = sums
+        # the 2 x 2 normal equations by Cramer's rule: a LAPACK call costs ~20 us here
+        det = xx * yy - xy * xy
+        if det <= 1e-12 * max(xx + yy, 1e-300) ** 2:
             break  # no contact pattern to follow
-        change = frame - moved
-        step = np.linalg.solve(a, [(grad_x * change).sum(), (grad_y * change).sum()])
-        estimate = estimate - step
-        if np.abs(step).max() < 1e-3:
+        step_x, step_y = (yy * xc - xy * yc) / det, (xx * yc - xy * xc) / det
+        estimate = estimate - np.array([step_x, step_y])
+        if max(abs(step_x), abs(step_y)) < 1e-3:
             break
     return estimate
 
@@ -114,13 +115,16 @@ def step_noise(frames: np.ndarray) -> float:
     return float(robust_sigma(steps - np.median(steps, axis=0), axis=None)) / np.sqrt(2)
 
 
-def _gradient(image: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _gradient(
+    image: np.ndarray, grad_y: np.ndarray | None = None, grad_x: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """`np.gradient` of an image (unit spacing, first-order edges), the same numbers faster.
 
     `np.gradient` spends most of its time on generality; the registration calls it up to
-    4 times a frame in the sensor loop.
+    4 times a frame in the sensor loop. `grad_y` and `grad_x` are filled when given.
     """
-    grad_y, grad_x = np.empty_like(image), np.empty_like(image)
+    grad_y = np.empty_like(image) if grad_y is None else grad_y
+    grad_x = np.empty_like(image) if grad_x is None else grad_x
     grad_y[1:-1] = (image[2:] - image[:-2]) / 2.0
     grad_y[0] = (image[1] - image[0]) / 1.0
     grad_y[-1] = (image[-1] - image[-2]) / 1.0
@@ -302,11 +306,21 @@ def track_deviation(
     `window` holds the (reference, 2) positions [m] of the reference window, which ends
     `gap` frames before the frame at `position`; `held` is the held position [m].
     """
-    steps = np.arange(reference) - (reference - 1) / 2
+    steps, spread = _centred_steps(reference)
     lever = (reference - 1) / 2 + gap
-    slope = steps @ window / (steps @ steps)
-    deviation = position - (window.mean(axis=0) + lever * slope)
-    moved = position - held
-    if np.linalg.norm(moved) > 3 * sigma:
-        return float(deviation @ moved / np.linalg.norm(moved) / sigma)
-    return float(np.linalg.norm(deviation) / sigma - 1.25)
+    slope = steps @ window / spread
+    deviation_x, deviation_y = (position - (window.mean(axis=0) + lever * slope)).tolist()
+    moved_x, moved_y = (position - held).tolist()
+    # (Python floats: a 2-vector's norm and dot cost NumPy ~5 us each, in the sensor loop)
+    moved = math.hypot(moved_x, moved_y)
+    if moved > 3 * sigma:
+        return (deviation_x * moved_x + deviation_y * moved_y) / moved / sigma
+    return math.hypot(deviation_x, deviation_y) / sigma - 1.25
+
+
+@lru_cache(maxsize=8)
+def _centred_steps(reference: int) -> tuple[np.ndarray, float]:
+    """Frame steps of a reference window about its middle, and their sum of squares."""
+    steps = np.arange(reference) - (reference - 1) / 2
+    steps.flags.writeable = False  # shared by every call
+    return steps, float(steps @ steps)
