@@ -13,6 +13,7 @@ def test_public_names():
         "cpm_finger_sensor",
         "list_fabricslide_files",
         "parse_fabricslide_name",
+        "read_archive",
         "read_array",
         "read_fabricslide",
         "read_frame",

@@ -378,54 +378,66 @@ class SlipDetector:
         z = self.piezo_innovation(piezo, rate)
         return cusum(np.nan_to_num(z**2 - 1.0), self.warm_up, self.drift)
 
-    def _events(self, detection: SlipDetection) -> list[SlipEvent]:
-        displacement, sigma = detection.displacement, detection.position_noise
-        speed_statistic, piezo_statistic = detection.speed_statistic, detection.piezo_statistic
-        rate = detection.frame_rate
-        held = displacement[self.warm_up - HELD_FRAMES : self.warm_up].mean(axis=0)
-        cumulative = np.cumsum(displacement - held, axis=0)
+    def held_position(self, detection: SlipDetection) -> np.ndarray:
+        """(x, y) [m]: the mean displacement of the last `HELD_FRAMES` warm-up frames."""
+        return detection.displacement[self.warm_up - HELD_FRAMES : self.warm_up].mean(axis=0)
+
+    def _incipient_frame(self, detection: SlipDetection) -> int | None:
+        """The first frame whose 3-frame mean displacement passes the incipient limit."""
+        displacement = detection.displacement
+        cumulative = np.cumsum(displacement - self.held_position(detection), axis=0)
         mean3 = np.full(displacement.shape[0], 0.0)
         mean3[3:] = np.linalg.norm(cumulative[3:] - cumulative[:-3], axis=1) / 3.0
-        limit = self.incipient_threshold * sigma / np.sqrt(3.0)
-        found = []
+        limit = self.incipient_threshold * detection.position_noise / np.sqrt(3.0)
         moved = np.nonzero(mean3[self.warm_up :] > limit)[0]
-        if moved.size:
-            found.append(("incipient", int(moved[0]) + self.warm_up, "displacement"))
+        return int(moved[0]) + self.warm_up if moved.size else None
 
-        def armed(statistic: np.ndarray, gap: int) -> np.ndarray:
-            # counts once its reference window starts at or after the incipient decision:
-            # the track it extrapolates is the loaded contact's, not the rest before the
-            # load began (whose end, a ramp's start, is incipient slip)
-            counted = np.full(statistic.shape, np.nan)
-            if moved.size:
-                start = int(moved[0]) + self.warm_up + _REFERENCE + gap - 1
-                counted[start:] = statistic[start:]
-            return counted
+    def channels(self, detection: SlipDetection) -> list[tuple[str, np.ndarray, float, int]]:
+        """The gross-slip channels decided on, in the order that breaks ties between them.
+
+        (channel, statistic, threshold, first frame it counts from): the static run-ahead
+        as a backup and the late channel count once their reference window starts at or
+        after the incipient decision (the track they extrapolate is the loaded contact's,
+        not the rest before the load began); never (the number of frames) without one.
+        """
+        n = detection.displacement.shape[0]
+        incipient = self._incipient_frame(detection)
+
+        def armed(gap: int) -> int:
+            return n if incipient is None else incipient + _REFERENCE + gap - 1
 
         # with PVDF frames the static run-ahead decides only past the backup threshold: at
         # its own threshold it adds premature alarms (the Cattaneo-Mindlin shift speeds up)
-        channels = [("speed", speed_statistic, self.gross_threshold)]
-        if not np.all(np.isnan(piezo_statistic)):
-            channels = [("piezo", piezo_statistic, self.piezo_threshold)]
+        speed, piezo = detection.speed_statistic, detection.piezo_statistic
+        channels = [("speed", speed, self.gross_threshold, 0)]
+        if not np.all(np.isnan(piezo)):
+            channels = [("piezo", piezo, self.piezo_threshold, 0)]
             onset = detection.onset_statistic
-            if self.onset_threshold is not None and onset.size == piezo_statistic.size:
-                channels.append(("onset", onset, self.onset_threshold))
+            if self.onset_threshold is not None and onset.size == piezo.size:
+                channels.append(("onset", onset, self.onset_threshold, 0))
             if self.backup_threshold is not None:
-                channels.append(("speed", armed(speed_statistic, _GAP), self.backup_threshold))
+                channels.append(("speed", speed, self.backup_threshold, armed(_GAP)))
         if self.late_threshold is not None:
-            channels.append(
-                ("late", armed(detection.late_statistic, _LATE_GAP), self.late_threshold)
-            )
-        for channel, statistic, threshold in channels:
-            above = np.nonzero(np.nan_to_num(statistic) > threshold)[0]
+            late = detection.late_statistic
+            channels.append(("late", late, self.late_threshold, armed(_LATE_GAP)))
+        return channels
+
+    def _events(self, detection: SlipDetection) -> list[SlipEvent]:
+        found = []
+        incipient_frame = self._incipient_frame(detection)
+        if incipient_frame is not None:
+            found.append(("incipient", incipient_frame, "displacement"))
+        for channel, statistic, threshold, start in self.channels(detection):
+            above = np.nonzero(np.nan_to_num(statistic[start:]) > threshold)[0]
             if above.size:
-                found.append(("gross", int(above[0]), channel))
+                found.append(("gross", start + int(above[0]), channel))
         gross = min(
             (item for item in found if item[0] == "gross"), default=None, key=lambda item: item[1]
         )
         incipient = next((item for item in found if item[0] == "incipient"), None)
         if incipient and gross and incipient[1] > gross[1]:
             incipient = None  # gross slip came first: no separate warning
+        rate = detection.frame_rate
         return [
             SlipEvent(item[0], item[1], item[1] / rate, item[2])
             for item in (incipient, gross)

@@ -156,7 +156,7 @@ def _read(
     arguments: argparse.Namespace, warm_up: int
 ) -> tuple[str, np.ndarray, str | None, np.ndarray | None]:
     """The static frames and the PVDF frames (or None), each checked, with their keys."""
-    from taxel.io._arrays import read_archive  # every array of an .npz, checked
+    from taxel.io import read_archive  # every array of an .npz, checked
 
     name = arguments.file
     if Path(name).suffix.lower() != ".npz":

@@ -7,7 +7,8 @@ for text, the line.
 Frames and sequences (npy, npz, png, tif, csv)
 ----------------------------------------------
 read_frame, read_sequence, TactileSequence; read_array (any .npy as stored, its header
-checked against the file before anything is allocated)
+checked against the file before anything is allocated); read_archive (every array of an
+.npz, each checked so)
 
 Writing (never over an existing file unless asked; never over an input)
 -------------------------------------------------------------------------
@@ -19,7 +20,7 @@ read_fabricslide, FabricSlideRecording, parse_fabricslide_name, list_fabricslide
 CPM_FINGER, cpm_finger_sensor (the CPM-Finger as a sensor model), CPM_FINGER_ASSUMED
 """
 
-from taxel.io._arrays import read_array
+from taxel.io._arrays import read_archive, read_array
 from taxel.io._cpm_finger import CPM_FINGER_ASSUMED, cpm_finger_sensor
 from taxel.io._fabricslide import (
     CPM_FINGER,
@@ -40,6 +41,7 @@ __all__ = [
     "cpm_finger_sensor",
     "list_fabricslide_files",
     "parse_fabricslide_name",
+    "read_archive",
     "read_array",
     "read_fabricslide",
     "read_frame",

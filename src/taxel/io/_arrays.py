@@ -67,12 +67,30 @@ def read_archive(path: str | os.PathLike[str]) -> dict[str, np.ndarray]:
 
     Members that are not .npy files (metadata stored beside the arrays) are left out.
 
+    Parameters
+    ----------
+    path : str or path-like
+        The .npz file.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        Empty for an archive of no arrays.
+
     Raises
     ------
     FileNotFoundError
         When `path` does not exist.
     ValueError
         Naming the file when it is not a zip archive, or one of its arrays is unreadable.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "slide.npz"
+    >>> np.savez(path, static=np.zeros((50, 16, 16)), piezo=np.ones((50, 8, 8)))
+    >>> {name: array.shape for name, array in sorted(read_archive(path).items())}
+    {'piezo': (50, 8, 8), 'static': (50, 16, 16)}
     """
     path = check_file(path)
     try:

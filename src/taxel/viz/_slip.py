@@ -116,12 +116,11 @@ def plot_slip(
     else:
         upper, lower = _checked_axes(ax)
         figure = upper.figure
-    if detector is None:
-        detector, warm_up = SlipDetector(), _warm_up(detection)
-    else:
-        warm_up = detector.warm_up
+    if detector is None:  # the default thresholds, over the detection's own warm-up
+        detector = SlipDetector(warm_up=_warm_up(detection))
+    warm_up = detector.warm_up
     milliseconds = np.arange(n) / detection.frame_rate * 1e3
-    _draw_displacement(upper, detection, detector, warm_up, milliseconds)
+    _draw_displacement(upper, detection, detector, milliseconds)
     _draw_statistics(lower, detection, detector, milliseconds)
     for axes in (upper, lower):
         axes.axvspan(
@@ -210,14 +209,8 @@ def _warm_up(detection: Any) -> int:
     return int(finite[0]) if finite.size else detection.displacement.shape[0]
 
 
-def _draw_displacement(
-    axes: Any, detection: Any, detector: Any, warm_up: int, milliseconds: np.ndarray
-) -> None:
-    from taxel.active._slip_signals import HELD_FRAMES  # the held position, as `_events`
-
-    held_frames = detection.displacement[max(warm_up - HELD_FRAMES, 0) : warm_up]
-    held = held_frames.mean(axis=0) if held_frames.size else np.zeros(2)
-    moved = (detection.displacement - held) * 1e3
+def _draw_displacement(axes: Any, detection: Any, detector: Any, milliseconds: np.ndarray) -> None:
+    moved = (detection.displacement - detector.held_position(detection)) * 1e3
     axes.plot(milliseconds, moved[:, 0], color="tab:blue", lw=1, label="x")
     axes.plot(milliseconds, moved[:, 1], color="tab:orange", lw=1, label="y")
     # what incipient slip compares: the size of the mean of the last 3 frames
@@ -238,31 +231,8 @@ def _draw_displacement(
 
 
 def _channels(detection: Any, detector: Any) -> list[tuple[str, np.ndarray, float, int]]:
-    """(channel, statistic, threshold, first counted frame) as `SlipDetector._events` has them."""
-    from taxel.active._slip import _GAP, _LATE_GAP, _REFERENCE  # the arming of `_events`
-
-    n = detection.displacement.shape[0]
-    incipient = detection.first("incipient")
-
-    def armed(gap: int) -> int:
-        return n if incipient is None else incipient.frame + _REFERENCE + gap - 1
-
-    piezo = detection.piezo_statistic
-    channels = []
-    if piezo.size == n and not np.all(np.isnan(piezo)):
-        channels.append(("piezo", piezo, detector.piezo_threshold, 0))
-        onset = detection.onset_statistic
-        if detector.onset_threshold is not None and onset.size == n:
-            channels.append(("onset", onset, detector.onset_threshold, 0))
-        if detector.backup_threshold is not None:
-            speed = detection.speed_statistic
-            channels.append(("speed", speed, detector.backup_threshold, armed(_GAP)))
-    else:
-        channels.append(("speed", detection.speed_statistic, detector.gross_threshold, 0))
-    if detector.late_threshold is not None:
-        late = detection.late_statistic
-        channels.append(("late", late, detector.late_threshold, armed(_LATE_GAP)))
-    return [item for item in channels if not np.all(np.isnan(item[1]))]
+    """The detector's channels (`SlipDetector.channels`) that have a statistic to draw."""
+    return [item for item in detector.channels(detection) if not np.all(np.isnan(item[1]))]
 
 
 def _draw_statistics(axes: Any, detection: Any, detector: Any, milliseconds: np.ndarray) -> None:
