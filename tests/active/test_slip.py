@@ -201,6 +201,24 @@ def test_score_counts_detections_and_false_alarms(slip, hold, steady):
     assert summary["gross"]["latency"]["frames"] == evaluation.latencies.tolist()
 
 
+def test_channels_say_what_decides_and_from_when():
+    # the blob slides from frame 60: incipient at 61; the late channel counts from the
+    # first reference window (15 frames) that ends 12 frames before, after that decision
+    rows, cols = np.mgrid[:16, :16] * 2e-3
+    centre = np.where(np.arange(120) < 60, 0.0, 30e-3 * (np.arange(120) - 60) / 1000)
+    blob = np.exp(-((cols - 15e-3 - centre[:, None, None]) ** 2 + (rows - 15e-3) ** 2) / 32e-6)
+    detector = SlipDetector()
+    detection = detector.run(blob, frame_rate=1000.0)
+    channels = detector.channels(detection)
+    assert [(name, threshold, start) for name, _, threshold, start in channels] == [
+        ("speed", 5.0, 0),
+        ("late", 15.5, 61 + 15 + 12 - 1),
+    ]
+    assert channels[0][1] is detection.speed_statistic
+    assert np.allclose(detector.held_position(detection), detection.displacement[30:40].mean(0))
+    assert detection.events[-1].frame == int(np.argmax(detection.speed_statistic > 5.0))
+
+
 def test_bad_inputs_raise():
     with pytest.raises(ValueError, match="`warm_up` must be an integer >= 26, got 5"):
         SlipDetector(warm_up=5)
