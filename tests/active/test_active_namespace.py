@@ -16,6 +16,7 @@ def test_public_names():
         "DEFAULT_BAND_EDGES",
         "DEFAULT_EDGE_RADII",
         "DEFORMATION_OBJECTS",
+        "DESCRIPTOR_NAMES",
         "Deformation",
         "DeformationResult",
         "EdgeCrossSection",

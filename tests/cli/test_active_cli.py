@@ -143,6 +143,32 @@ def test_recognize_ranks_the_candidates(capsys, small_files):
     assert result["name"] == "washer" and result["n_touches"] == 3
 
 
+def test_recognize_names_the_flag_of_a_library_of_other_features(capsys, small_files, tmp_path):
+    from taxel.active import DESCRIPTOR_NAMES, ModelLibrary
+
+    library = ModelLibrary.load(small_files / "l.json")
+    assert tuple(library.feature_names) == DESCRIPTOR_NAMES
+    other = ModelLibrary(
+        names=library.names,
+        templates=library.templates[:, :2],
+        labels=library.labels,
+        scales=library.scales[:2],
+        feature_names=("area", "force"),
+        normal_force=library.normal_force,
+        step=library.step,
+        sensor=library.sensor,
+    )
+    path = tmp_path / "other.json"
+    other.save(path)
+    saved = path.read_text()
+    assert main(["active", "recognize", "--object", "coin", "--library", str(path)]) == 2
+    assert capsys.readouterr().err == (
+        f"taxel active recognize: error: --library {str(path)!r} holds a library of 2 other "
+        f"features than the {len(DESCRIPTOR_NAMES)} of this version's touches: build it again\n"
+    )
+    assert path.read_text() == saved  # never rebuilt over
+
+
 def test_recognize_presses_within_the_finger_s_limit(capsys, small_files):
     library = str(small_files / "l.json")  # made at the default 15 N
     # photoelastic64's finger presses at most 12.8 N: refused before a library is built

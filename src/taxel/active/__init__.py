@@ -49,7 +49,8 @@ DEFORMATION_OBJECTS, make_block, PadCalibration, calibrate_pad, core_area
 Recognition against a library of object models (up to three touches)
 --------------------------------------------------------------------
 Recognition, RecognitionResult, recognize_object, ModelLibrary, build_model_library,
-make_model, MODEL_NAMES, describe_models, TOUCH_FEATURES
+make_model, MODEL_NAMES, describe_models, TOUCH_FEATURES, DESCRIPTOR_NAMES (the features a
+library's templates hold: the first touch's and the least and most of the other two)
 """
 
 from taxel.active._contact_point import (
@@ -97,7 +98,7 @@ from taxel.active._probing_trials import (
 )
 from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._recognition import Recognition, RecognitionResult
-from taxel.active._recognize import build_model_library, recognize_object
+from taxel.active._recognize import DESCRIPTOR_NAMES, build_model_library, recognize_object
 from taxel.active._scene import Box, ProfileObject, SceneObject, make_ball
 from taxel.active._sliding_texture import (
     SLIDING_BAND_EDGES,
@@ -154,6 +155,7 @@ __all__ = [
     "DEFAULT_BAND_EDGES",
     "DEFAULT_EDGE_RADII",
     "DEFORMATION_OBJECTS",
+    "DESCRIPTOR_NAMES",
     "MODEL_NAMES",
     "NORMALIZATIONS",
     "SECTION_DESCRIPTORS",

@@ -11,7 +11,7 @@ import argparse
 from collections.abc import Callable
 
 from taxel.cli import _active_procedures as procedures
-from taxel.cli import _active_slip
+from taxel.cli import _active_recognize, _active_slip
 from taxel.cli._arguments import (
     DEFORMATION_OBJECTS,
     MODEL_NAMES,
@@ -210,7 +210,7 @@ def register(commands: argparse._SubParsersAction) -> None:
         "recognize an object against a library of models from up to three touches: one "
         "when the first touch leaves only one model within the library's spread of a touch, "
         "else three",
-        procedures.recognize,
+        _active_recognize.recognize,
     )
     recognize.add_argument(
         "--object",

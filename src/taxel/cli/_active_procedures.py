@@ -18,10 +18,9 @@ from taxel.cli._files import building, file_or_build
 from taxel.cli._main import CommandLineError
 from taxel.cli._progress import progress_bar
 
-__all__ = ["edge_radius", "finger_limit", "locate_corner", "probe_plane", "recognize", "stiffness"]
+__all__ = ["edge_radius", "finger_limit", "locate_corner", "probe_plane", "stiffness"]
 
 _EDGE_FORCES = (12.0, 39.0)  # taxel.active's DEFAULT_FORCES: the seed's light and firm presses
-_TOUCH_FORCE = 15.0  # taxel.active's DEFAULT_TOUCH_FORCE, of recognition's touches
 _TOUCH = 0.5  # measure_deformation's touch_force [N], the first press of a pad calibration
 _DEFAULT_OBJECT = "racquet ball"  # what `stiffness` presses unless told
 
@@ -448,53 +447,4 @@ def stiffness(arguments: argparse.Namespace) -> int:
         "height: " + " / ".join(f"{h * 1e3:.2f}" for h in result.heights) + " mm",
         "contact area: " + " -> ".join(f"{a:.0f}" for a in result.area_pixels) + " pixels",
     ]
-    return _emit(arguments, result.to_dict(), lines, built)
-
-
-def recognize(arguments: argparse.Namespace) -> int:
-    from taxel.active import ModelLibrary, build_model_library, recognize_object
-
-    force = _TOUCH_FORCE if arguments.force is None else arguments.force
-    _check_forces("--force", [force], arguments.sensor)
-    built: list[str] = []
-    bar = not arguments.no_progress
-    library = file_or_build(
-        arguments.library,
-        ModelLibrary.load,
-        lambda path, progress: build_model_library(
-            sensor=arguments.sensor, normal_force=force, path=path, progress=progress
-        ),
-        "model library",
-        "--library",
-        built,
-        unit="pose",
-        bar=bar,
-    )
-    if library is not None:
-        _check_made_on("--library", arguments.library, library.sensor, arguments.sensor)
-        if arguments.force is not None and library.normal_force != force:
-            raise CommandLineError(
-                f"--force {force:g}: the --library {arguments.library} was made with "
-                f"{library.normal_force:g} N; give that or another --library"
-            )
-        force = library.normal_force
-    else:  # (with no --force, the library recognize_object makes by default)
-        with building("model library", "pose", bar=bar) as progress:
-            library = build_model_library(
-                sensor=arguments.sensor, normal_force=force, progress=progress
-            )
-    result = recognize_object(
-        arguments.object,
-        library=library,
-        sensor=arguments.sensor,
-        rng=arguments.seed,
-        stop_early=not arguments.three_touches,
-    )
-    lines = [
-        f"touched a {arguments.object} {result.n_touches} time(s) at {force:g} N on "
-        f"{arguments.sensor}",
-        "ranked candidates:",
-    ]
-    lines += [f"  {name:12} score {score:.3f}" for name, score, _ in result.candidates]
-    lines.append(f"recognized as: {result.message}")
     return _emit(arguments, result.to_dict(), lines, built)
