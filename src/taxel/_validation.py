@@ -8,6 +8,7 @@ The command line turns these into one-line messages and exit code 2.
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Callable
 from typing import Any
 
@@ -27,6 +28,7 @@ __all__ = [
     "check_progress",
     "check_range",
     "check_shape",
+    "is_whole",
     "refuse_complex",
 ]
 
@@ -180,6 +182,22 @@ def check_count(name: str, value: Any, *, minimum: int = 1) -> int:
     if count < minimum:
         raise ValueError(f"`{name}` must be >= {minimum}, got {count}")
     return count
+
+
+def is_whole(value: Any) -> bool:
+    """True when `value` is a finite real number with no fractional part, not a bool.
+
+    ``int(value) != value`` raises OverflowError for inf and an unnamed ValueError for NaN;
+    this only answers, so that the caller's message, naming its parameter, is raised.
+
+    Examples
+    --------
+    >>> [is_whole(v) for v in (3, 3.0, 3.5, float("inf"), float("nan"), "3", True)]
+    [True, True, False, False, False, False, False]
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        return False
+    return math.isfinite(value) and float(value).is_integer()
 
 
 def check_integer(name: str, value: Any, low: int = 1, high: int | None = None) -> int:

@@ -15,9 +15,8 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import check_instance, check_positive
+from taxel._validation import check_instance, check_positive, is_whole
 from taxel.active._contact_point import ContactPointCalibration
-from taxel.active._counts import is_whole
 from taxel.active._probe import Probe
 from taxel.active._probe_plane import (
     MIN_PROBES,

@@ -13,8 +13,7 @@ from typing import Any
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from taxel._validation import check_count, check_positive, check_range
-from taxel.active._counts import is_whole
+from taxel._validation import check_count, check_positive, check_range, is_whole
 from taxel.active._finger import SimulatedFinger
 from taxel.active._imaging import imaging_sensor
 from taxel.active._probe_corner import CornerEstimate, CornerProbing, box_corner_frame

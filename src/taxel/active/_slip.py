@@ -68,8 +68,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_positive
-from taxel.active._counts import is_whole
+from taxel._validation import as_finite_array, check_positive, is_whole
 from taxel.active._slip_signals import (
     HELD_FRAMES,
     cusum,

@@ -17,8 +17,7 @@ from typing import Any, cast
 
 import numpy as np
 
-from taxel._validation import check_count, check_range
-from taxel.active._counts import is_whole
+from taxel._validation import check_count, check_range, is_whole
 from taxel.active._slip import SlipDetection, SlipDetector
 from taxel.active._slip_simulation import (
     SlipSequence,
