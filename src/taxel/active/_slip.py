@@ -399,8 +399,12 @@ class SlipDetector:
         after the incipient decision (the track they extrapolate is the loaded contact's,
         not the rest before the load began); never (the number of frames) without one.
         """
+        return self._channels(detection, self._incipient_frame(detection))
+
+    def _channels(
+        self, detection: SlipDetection, incipient: int | None
+    ) -> list[tuple[str, np.ndarray, float, int]]:
         n = detection.displacement.shape[0]
-        incipient = self._incipient_frame(detection)
 
         def armed(gap: int) -> int:
             return n if incipient is None else incipient + _REFERENCE + gap - 1
@@ -422,26 +426,19 @@ class SlipDetector:
         return channels
 
     def _events(self, detection: SlipDetection) -> list[SlipEvent]:
-        found = []
-        incipient_frame = self._incipient_frame(detection)
-        if incipient_frame is not None:
-            found.append(("incipient", incipient_frame, "displacement"))
-        for channel, statistic, threshold, start in self.channels(detection):
+        incipient = self._incipient_frame(detection)
+        gross: tuple[int, str] | None = None  # the earliest; a tie goes to the first channel
+        for channel, statistic, threshold, start in self._channels(detection, incipient):
             above = np.nonzero(np.nan_to_num(statistic[start:]) > threshold)[0]
-            if above.size:
-                found.append(("gross", start + int(above[0]), channel))
-        gross = min(
-            (item for item in found if item[0] == "gross"), default=None, key=lambda item: item[1]
-        )
-        incipient = next((item for item in found if item[0] == "incipient"), None)
-        if incipient and gross and incipient[1] > gross[1]:
+            if above.size and (gross is None or start + int(above[0]) < gross[0]):
+                gross = (start + int(above[0]), channel)
+        if incipient is not None and gross is not None and incipient > gross[0]:
             incipient = None  # gross slip came first: no separate warning
         rate = detection.frame_rate
-        return [
-            SlipEvent(item[0], item[1], item[1] / rate, item[2])
-            for item in (incipient, gross)
-            if item is not None
-        ]
+        events = [] if incipient is None else [(incipient, "incipient", "displacement")]
+        if gross is not None:
+            events.append((gross[0], "gross", gross[1]))
+        return [SlipEvent(kind, frame, frame / rate, channel) for frame, kind, channel in events]
 
 
 def detect_slip(

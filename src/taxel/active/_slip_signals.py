@@ -115,23 +115,18 @@ def step_noise(frames: np.ndarray) -> float:
     return float(robust_sigma(steps - np.median(steps, axis=0), axis=None)) / np.sqrt(2)
 
 
-def _gradient(
-    image: np.ndarray, grad_y: np.ndarray | None = None, grad_x: np.ndarray | None = None
-) -> tuple[np.ndarray, np.ndarray]:
-    """`np.gradient` of an image (unit spacing, first-order edges), the same numbers faster.
+def _gradient(image: np.ndarray, grad_y: np.ndarray, grad_x: np.ndarray) -> None:
+    """`np.gradient` of an image (unit spacing, first-order edges) into `grad_y`, `grad_x`.
 
-    `np.gradient` spends most of its time on generality; the registration calls it up to
-    4 times a frame in the sensor loop. `grad_y` and `grad_x` are filled when given.
+    The same numbers faster: `np.gradient` spends most of its time on generality, and the
+    registration calls it up to 4 times a frame in the sensor loop.
     """
-    grad_y = np.empty_like(image) if grad_y is None else grad_y
-    grad_x = np.empty_like(image) if grad_x is None else grad_x
     grad_y[1:-1] = (image[2:] - image[:-2]) / 2.0
     grad_y[0] = (image[1] - image[0]) / 1.0
     grad_y[-1] = (image[-1] - image[-2]) / 1.0
     grad_x[:, 1:-1] = (image[:, 2:] - image[:, :-2]) / 2.0
     grad_x[:, 0] = (image[:, 1] - image[:, 0]) / 1.0
     grad_x[:, -1] = (image[:, -1] - image[:, -2]) / 1.0
-    return grad_y, grad_x
 
 
 def robust_sigma(values: np.ndarray, axis: int | None = 0) -> np.ndarray:
