@@ -70,7 +70,12 @@ import numpy as np
 
 from taxel._validation import as_finite_array, check_positive, is_whole
 from taxel.active._slip_signals import (
+    _GAP,
+    _LATE_GAP,
+    _LEAST_WARM_UP,
+    _REFERENCE,
     HELD_FRAMES,
+    armed_from,
     cusum,
     matched_filter,
     motion_innovation,
@@ -93,10 +98,6 @@ ONSET_THRESHOLD = 4.25
 # frames onset - 2 .. onset + 3: the stick phase's last speed-up, then the braking
 ONSET_TEMPLATE = (0.7, 1.2, -0.5, -2.5, -2.2, -0.3)
 
-_REFERENCE = 15  # frames in the reference window of the speed
-_GAP = 3  # frames between the reference window and the current frame
-_LATE_GAP = 12  # the same for the late channel (1.5 times the slowest friction relaxation)
-_LEAST_WARM_UP = _REFERENCE + _LATE_GAP - 1
 _DIRECTION = 20  # frames over which the PVDF pattern's direction of motion is taken
 
 
@@ -405,25 +406,37 @@ class SlipDetector:
         self, detection: SlipDetection, incipient: int | None
     ) -> list[tuple[str, np.ndarray, float, int]]:
         n = detection.displacement.shape[0]
+        statistics = {
+            "piezo": detection.piezo_statistic,
+            "onset": detection.onset_statistic,
+            "speed": detection.speed_statistic,
+            "late": detection.late_statistic,
+        }
+        with_piezo = not np.all(np.isnan(detection.piezo_statistic))
+        return [
+            (channel, statistics[channel], threshold, armed_from(incipient, gap, n))
+            for channel, threshold, gap in self.channel_plan(with_piezo)
+            if statistics[channel].size == n
+        ]
 
-        def armed(gap: int) -> int:
-            return n if incipient is None else incipient + _REFERENCE + gap - 1
+    def channel_plan(self, with_piezo: bool) -> list[tuple[str, float, int | None]]:
+        """(channel, threshold, arming gap or None) of the gross-slip channels, in tie order.
 
+        A channel with a gap counts once its reference window, ending that many frames
+        before, starts at or after the incipient decision (`armed_from`).
+        """
         # with PVDF frames the static run-ahead decides only past the backup threshold: at
         # its own threshold it adds premature alarms (the Cattaneo-Mindlin shift speeds up)
-        speed, piezo = detection.speed_statistic, detection.piezo_statistic
-        channels = [("speed", speed, self.gross_threshold, 0)]
-        if not np.all(np.isnan(piezo)):
-            channels = [("piezo", piezo, self.piezo_threshold, 0)]
-            onset = detection.onset_statistic
-            if self.onset_threshold is not None and onset.size == piezo.size:
-                channels.append(("onset", onset, self.onset_threshold, 0))
+        plan: list[tuple[str, float, int | None]] = [("speed", self.gross_threshold, None)]
+        if with_piezo:
+            plan = [("piezo", self.piezo_threshold, None)]
+            if self.onset_threshold is not None:
+                plan.append(("onset", self.onset_threshold, None))
             if self.backup_threshold is not None:
-                channels.append(("speed", speed, self.backup_threshold, armed(_GAP)))
+                plan.append(("speed", self.backup_threshold, _GAP))
         if self.late_threshold is not None:
-            late = detection.late_statistic
-            channels.append(("late", late, self.late_threshold, armed(_LATE_GAP)))
-        return channels
+            plan.append(("late", self.late_threshold, _LATE_GAP))
+        return plan
 
     def _events(self, detection: SlipDetection) -> list[SlipEvent]:
         incipient = self._incipient_frame(detection)

@@ -37,18 +37,14 @@ from typing import Any
 import numpy as np
 
 from taxel._validation import as_finite_array, check_positive, is_whole
-from taxel.active._slip import (
-    _DIRECTION,
+from taxel.active._slip import _DIRECTION, ONSET_TEMPLATE, SlipDetector, SlipEvent
+from taxel.active._slip_signals import (
     _GAP,
     _LATE_GAP,
     _LEAST_WARM_UP,
     _REFERENCE,
-    ONSET_TEMPLATE,
-    SlipDetector,
-    SlipEvent,
-)
-from taxel.active._slip_signals import (
     HELD_FRAMES,
+    armed_from,
     charge_leak,
     motion_innovation,
     position_noise,
@@ -364,7 +360,7 @@ class SlipMonitor:
                     SlipEvent("incipient", index, index / self.frame_rate, "displacement")
                 )
         for channel, value, threshold in self._channels(index, piezo is not None):
-            if threshold is not None and value > threshold:  # NaN never passes
+            if value > threshold:  # NaN never passes
                 found.append(SlipEvent("gross", index, index / self.frame_rate, channel))
                 break
         self._events.extend(found)
@@ -394,22 +390,17 @@ class SlipMonitor:
         total = sum(weight * values[i] for i, weight in enumerate(self._template))
         self.onset_statistic = float(total / self._template_norm)
 
-    def _channels(self, index: int, with_piezo: bool) -> list[tuple[str, float, float | None]]:
-        """The gross-slip channels of `SlipDetector._events`, in its order (ties: first)."""
-        detector = self.detector
-
-        def armed(value: float, gap: int) -> float:
-            start = None if self._incipient is None else self._incipient + _REFERENCE + gap - 1
-            return value if start is not None and index >= start else float("nan")
-
-        channels: list[tuple[str, float, float | None]]
-        if not with_piezo:
-            channels = [("speed", self.speed_statistic, detector.gross_threshold)]
-        else:
-            channels = [
-                ("piezo", self.piezo_statistic, detector.piezo_threshold),
-                ("onset", self.onset_statistic, detector.onset_threshold),
-                ("speed", armed(self.speed_statistic, _GAP), detector.backup_threshold),
-            ]
-        channels.append(("late", armed(self.late_statistic, _LATE_GAP), detector.late_threshold))
-        return channels
+    def _channels(self, index: int, with_piezo: bool) -> list[tuple[str, float, float]]:
+        """`SlipDetector.channel_plan` at this frame: (channel, value, threshold), tie order."""
+        values = {
+            "piezo": self.piezo_statistic,
+            "onset": self.onset_statistic,
+            "speed": self.speed_statistic,
+            "late": self.late_statistic,
+        }
+        never = index + 1  # (not armed yet: no incipient decision)
+        return [
+            (channel, values[channel], threshold)
+            for channel, threshold, gap in self.detector.channel_plan(with_piezo)
+            if index >= armed_from(self._incipient, gap, never)
+        ]

@@ -29,6 +29,7 @@ from taxel.active._spline_shift import spline_shifter
 
 __all__ = [
     "HELD_FRAMES",
+    "armed_from",
     "charge_leak",
     "cusum",
     "matched_filter",
@@ -45,6 +46,10 @@ __all__ = [
 
 # the last warm-up frames averaged into the reference image and the held position
 HELD_FRAMES = 10
+_REFERENCE = 15  # frames in the reference window of the speed
+_GAP = 3  # frames between the reference window and the current frame
+_LATE_GAP = 12  # the same for the late channel (1.5 times the slowest friction relaxation)
+_LEAST_WARM_UP = _REFERENCE + _LATE_GAP - 1
 
 
 def register(frames: np.ndarray, reference: np.ndarray, pitch: tuple[float, float]) -> np.ndarray:
@@ -319,3 +324,15 @@ def _centred_steps(reference: int) -> tuple[np.ndarray, float]:
     steps = np.arange(reference) - (reference - 1) / 2
     steps.flags.writeable = False  # shared by every call
     return steps, float(steps @ steps)
+
+
+def armed_from(incipient: int | None, gap: int | None, never: int) -> int:
+    """The first frame a channel counts from: 0 without a gap; `never` without incipient slip.
+
+    With a gap, the channel's reference window (`_REFERENCE` frames ending `gap` before the
+    frame) must start at or after the incipient decision: the track it extrapolates is then
+    the loaded contact's, not the rest before the load began (whose end is incipient slip).
+    """
+    if gap is None:
+        return 0
+    return never if incipient is None else incipient + _REFERENCE + gap - 1
