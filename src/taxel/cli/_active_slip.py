@@ -89,15 +89,10 @@ def slip(arguments: argparse.Namespace) -> int:
     static_key, static, piezo_key, piezo = _read(arguments, detector.warm_up)
     detection = detector.run(static, piezo, frame_rate=arguments.frame_rate)
     if arguments.figure:
-        from taxel.io import write_files
         from taxel.viz import plot_slip
 
-        figure = plot_slip(detection, detector)
-        path = Path(arguments.figure)
-        with writing("--figure", path):
-            write_files(
-                [(path, lambda temporary: figure.savefig(temporary, format="png", dpi=110))]
-            )
+        with writing("--figure", arguments.figure):
+            plot_slip(detection, detector, path=arguments.figure, overwrite=arguments.overwrite)
     if arguments.json:
         payload = {
             "file": str(arguments.file),

@@ -8,6 +8,8 @@ from typing import Any
 
 import numpy as np
 
+from taxel.viz._saving import save_figure
+
 __all__ = ["plot_reconstruction"]
 
 
@@ -56,7 +58,6 @@ def plot_reconstruction(
     from matplotlib.figure import Figure  # no pyplot: no GUI backend, no global state
 
     from taxel._validation import as_rng, check_positive
-    from taxel.io import write_files
     from taxel.reconstruction import (
         TikhonovSolver,
         as_forward_model_spec,
@@ -147,11 +148,7 @@ def plot_reconstruction(
         f"pitch {spec.taxel_pitch * 1e3:.3g} mm (d / pitch = {spec.depth / spec.taxel_pitch:.1f})"
     )
     path = Path(path)
-    # in the format the suffix names (the temporary file's name has none), written beside
-    # the target and renamed once complete: a failed write keeps an old file
-    kind = path.suffix[1:].lower()
-    kind = kind if kind in figure.canvas.get_supported_filetypes() else "png"
-    write_files([(path, lambda temporary: figure.savefig(temporary, dpi=110, format=kind))])
+    save_figure(figure, path)
     return path
 
 

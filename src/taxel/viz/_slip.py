@@ -10,6 +10,8 @@ from typing import Any
 
 import numpy as np
 
+from taxel.viz._saving import save_figure
+
 __all__ = ["plot_slip"]
 
 # the colour of each channel's statistic, its threshold and its events
@@ -147,11 +149,7 @@ def plot_slip(
         pad=12,  # above the truth's triangles
     )
     if target is not None:
-        from taxel.io import write_files
-
-        kind = target.suffix[1:].lower()
-        kind = kind if kind in figure.canvas.get_supported_filetypes() else "png"
-        write_files([(target, lambda temporary: figure.savefig(temporary, dpi=110, format=kind))])
+        save_figure(figure, target)
     return figure
 
 
