@@ -8,13 +8,13 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import json
 import math
 import sys
 from collections.abc import Iterator, Sequence
 from typing import Any
 
 from taxel.cli._files import building, file_or_build
+from taxel.cli._json import strict_json
 from taxel.cli._main import CommandLineError
 from taxel.cli._progress import progress_bar
 
@@ -25,17 +25,6 @@ _TOUCH = 0.5  # measure_deformation's touch_force [N], the first press of a pad 
 _DEFAULT_OBJECT = "racquet ball"  # what `stiffness` presses unless told
 
 
-def _strict(value: Any) -> Any:
-    """`value` with every NaN or infinite number as None: strict JSON has no such tokens."""
-    if isinstance(value, dict):
-        return {key: _strict(item) for key, item in value.items()}
-    if isinstance(value, list | tuple):
-        return [_strict(item) for item in value]
-    if isinstance(value, float) and not math.isfinite(value):  # (numpy's float64 too)
-        return None
-    return value
-
-
 def _emit(
     arguments: argparse.Namespace,
     payload: dict[str, Any],
@@ -44,8 +33,7 @@ def _emit(
 ) -> int:
     """Print the result; then, on stderr, the files the command built (`built`)."""
     if arguments.json:
-        json.dump(_strict(payload), sys.stdout, indent=2, allow_nan=False, default=float)
-        sys.stdout.write("\n")
+        sys.stdout.write(strict_json(payload) + "\n")
     else:
         sys.stdout.write("\n".join(lines) + "\n")
     for note in built:  # only now: an error before this point leaves its one line alone

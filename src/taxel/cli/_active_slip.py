@@ -9,7 +9,6 @@ printed as a table (times in ms) or, with ``--json``, as strict JSON in SI units
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from pathlib import Path
 from typing import Any
@@ -18,6 +17,7 @@ import numpy as np
 
 from taxel.cli._arguments import positive, positive_in
 from taxel.cli._files import reading, writing
+from taxel.cli._json import strict_json
 from taxel.cli._main import CommandLineError
 
 __all__ = ["register", "slip"]
@@ -102,22 +102,11 @@ def slip(arguments: argparse.Namespace) -> int:
             **detection.to_dict(),
             "position_noise_m": detection.position_noise,
         }
-        text = json.dumps(_strict(payload), indent=2, allow_nan=False)
+        text = strict_json(payload)
         sys.stdout.write(text + "\n")
     else:
         sys.stdout.write(_table(arguments, static_key, static, piezo_key, piezo, detection))
     return 0
-
-
-def _strict(value: Any) -> Any:
-    """`value` with NaN and infinities as None: strict JSON has no such tokens."""
-    if isinstance(value, dict):
-        return {key: _strict(item) for key, item in value.items()}
-    if isinstance(value, list | tuple):
-        return [_strict(item) for item in value]
-    if isinstance(value, float) and not np.isfinite(value):
-        return None
-    return value
 
 
 def _table(
