@@ -88,3 +88,31 @@ def test_a_tv_search_that_cannot_reach_its_target_says_so(frame):
     fitted = reconstruct(frame, "resistive16", method="tv", noise_level=1e3)
     assert fitted.at_bound is False and "no mu" not in fitted.message
     assert fitted.residual_norm == pytest.approx(1.6e4, rel=0.03)
+
+
+def test_an_lcurve_corner_at_the_end_of_its_window_is_at_the_bound(frame):
+    """The L-curve's corner is sought inside a window of the grid (where the curve has not
+    collapsed); a curvature greatest at the window's end is no corner, and says so (it was
+    reported as a corner found, at_bound False, on 20 of 20 resistive16 frames at order 0)."""
+    from taxel.reconstruction import solver_for
+
+    low, high = solver_for("resistive16", order=0).scan.searched("lcurve")
+    grid = solver_for("resistive16", order=0).scan.grid
+    assert grid[0] < low < high < grid[-1]  # a window inside the grid
+    result = reconstruct(frame, "resistive16", regularization="lcurve")
+    assert result.at_bound is True
+    assert result.regularization == pytest.approx(low, rel=1e-12)
+    assert result.message == (
+        f"direct solve; the lcurve rule found no lambda inside [{low:.3g}, {high:.3g}]: "
+        f"lambda held at the smallest of its range, {low:.3g}, as the L-curve has no corner "
+        "inside"
+    )
+    # a smooth load at order 2 has its corner inside the window
+    rows, cols = np.mgrid[:16, :16]
+    smooth = 30e3 * np.exp(-((cols - 7.5) ** 2 + (rows - 7.2) ** 2) / 20)
+    readings = forward_operator("resistive16").apply(smooth)
+    readings += np.random.default_rng(1).normal(0, 1e3, readings.shape)
+    inside = reconstruct(readings, "resistive16", order=2, regularization="lcurve")
+    low2, high2 = solver_for("resistive16", order=2).scan.searched("lcurve")
+    assert inside.at_bound is False and inside.message == "direct solve"
+    assert low2 * 1.5 < inside.regularization < high2 / 1.5

@@ -340,9 +340,11 @@ class ParameterScan:
     ) -> tuple[np.ndarray, np.ndarray]:
         """(lambda, at_bound) of each frame (B,) by the rule; `noise`: noise std per frame.
 
-        `at_bound` is True where the rule found no lambda inside the grid and took one of
-        its ends: for the discrepancy principle, a residual that never reaches
-        tau sigma sqrt(m) (the largest lambda) or exceeds it everywhere (the smallest).
+        `at_bound` is True where the rule found no lambda inside the range it searches
+        (`searched`) and took one of its ends: for the discrepancy principle, a residual
+        that never reaches tau sigma sqrt(m) (the largest lambda) or exceeds it everywhere
+        (the smallest); for GCV, a minimum at an end; for the L-curve, a curvature
+        greatest at an end of its window (no corner inside).
         """
         if rule == "discrepancy":
             assert noise is not None
@@ -363,10 +365,29 @@ class ParameterScan:
             values[:, : self._first_meaningful] = -np.inf
             values[:, self._last_meaningful :] = -np.inf
             index = np.argmax(values, axis=1)
+            logs = _parabola_vertices(self.log_grid, values, index)
+            # the curvature greatest at an end of the searched window: no corner inside it
+            first, last = self._lcurve_window()
+            return 10**logs, (index <= first) | (index >= last)
         else:
             raise ValueError(f"unknown rule {rule!r}")
         logs = _parabola_vertices(self.log_grid, values, index)
         return 10**logs, (index == 0) | (index == self.grid.size - 1)
+
+    def _lcurve_window(self) -> tuple[int, int]:
+        """First and last grid index where the L-curve's corner is sought."""
+        return max(self._first_meaningful, 1), min(self._last_meaningful, self.grid.size - 1) - 1
+
+    def searched(self, rule: str) -> tuple[float, float]:
+        """The smallest and largest lambda `rule` can choose on this grid.
+
+        The L-curve's corner is sought only between the smallest mode's transition and
+        sqrt(g_max) (or 10): beyond them the curve has collapsed to its ends.
+        """
+        if rule == "lcurve":
+            first, last = self._lcurve_window()
+            return float(self.grid[first]), float(self.grid[last])
+        return float(self.grid[0]), float(self.grid[-1])
 
 
 def _crossings(x: np.ndarray, y: np.ndarray, target: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

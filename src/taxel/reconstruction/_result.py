@@ -26,18 +26,20 @@ def bound_message(
     rule: str,
     regularization: np.ndarray,
     at_bound: np.ndarray,
-    grid: np.ndarray,
+    searched: tuple[float, float],
     *,
     solve: str = "direct solve",
 ) -> str:
     """`solve`, and when the rule took an end of its range of lambda, which and why.
 
-    `regularization` and `at_bound` are per frame (B,), `grid` the range searched.
+    `regularization` and `at_bound` are per frame (B,), `searched` the smallest and largest
+    lambda the rule could choose (`ParameterScan.searched`).
     """
     if not np.any(at_bound):
         return solve
+    low, high = searched
     chosen = np.asarray(regularization)[np.asarray(at_bound)]
-    ends = [(end, why) for end, why in zip((grid[-1], grid[0]), _WHY[rule], strict=True)]
+    ends = [(end, why) for end, why in zip((high, low), _WHY[rule], strict=True)]
     parts = []
     for (end, why), name in zip(ends, ("largest", "smallest"), strict=True):
         count = int(np.count_nonzero(np.isclose(chosen, end, rtol=1e-9)))
@@ -45,7 +47,7 @@ def bound_message(
             frames = "" if at_bound.size == 1 else f" in {count} of {at_bound.size} frames"
             parts.append(f"lambda held at the {name} of its range, {end:.3g}{frames}, as {why}")
     return (
-        f"{solve}; the {rule} rule found no lambda inside [{grid[0]:.3g}, {grid[-1]:.3g}]: "
+        f"{solve}; the {rule} rule found no lambda inside [{low:.3g}, {high:.3g}]: "
         + "; ".join(parts)
     )
 

@@ -193,7 +193,7 @@ class TikhonovSolver:
             noise_level=None if noise is None else restore_batch(noise, batch),
             curve=curve.frame(0) if curve is not None and batch == () else curve,
             spacing=self.spec.load_pitch,
-            message=bound_message(rule, lam, bound, self.scan.grid),
+            message=bound_message(rule, lam, bound, self.scan.searched(rule)),
             at_bound=bool(bound[0]) if batch == () else bound.reshape(batch),
         )
 
