@@ -639,3 +639,28 @@ def test_an_empty_out_is_reported_as_given(tmp_path, capsys, command):
     assert capsys.readouterr().err == (
         f"taxel {command}: error: --out must name a {suffix} file, got ''\n"
     )
+
+
+def test_taxels_the_calibration_excludes_are_left_out_and_counted(tmp_path, capsys):
+    # a calibration of a resistive16 with dead taxels marks them; their readings are NaN,
+    # which failed the fit ("must be finite at live taxels") before they were passed on
+    from dataclasses import replace
+
+    from taxel.mechanics import make_indenter
+    from taxel.sensor import calibrate, make_sensor
+
+    sensor = make_sensor("resistive16")
+    sensor = replace(sensor, readout=replace(sensor.readout, dead=0.02))
+    calibration = calibrate(sensor, rng=1)
+    calibration.save(tmp_path / "cal.npz")
+    np.save(tmp_path / "raw.npy", sensor.press(make_indenter("sphere"), normal_force=2.0, rng=3).raw)
+    dead = int(np.count_nonzero(~calibration.valid))
+    argv = ["reconstruct", str(tmp_path / "raw.npy"), "--sensor", "resistive16"]
+    argv += ["--calibration", str(tmp_path / "cal.npz"), "--method", "support"]
+    assert main([*argv, "--out", str(tmp_path / "p.npy")]) == 0
+    out = capsys.readouterr().out
+    assert f"{dead} taxels excluded by --calibration {tmp_path / 'cal.npz'}" in out
+    assert main([*argv, "--out", str(tmp_path / "q.npy"), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["excluded_taxels"] == dead
+    assert summary["normal_force_n"] == pytest.approx(2.0, rel=0.03)

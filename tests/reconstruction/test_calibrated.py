@@ -50,3 +50,40 @@ def test_what_no_calibration_can_map_is_refused():
         calibrated_readings(np.zeros((8, 8)), calibration, "piezo8x8")
     with pytest.raises(TypeError, match="`calibration` must be a Calibration"):
         calibrated_readings(np.zeros((16, 16)), "cal.npz", "resistive16")
+
+
+def _faulty_resistive16():
+    """resistive16 with 2 % of its taxels dead (they read the bottom of the ADC's range)."""
+    from dataclasses import replace
+
+    sensor = make_sensor("resistive16")
+    return replace(sensor, readout=replace(sensor.readout, dead=0.02))
+
+
+def test_the_taxels_a_calibration_excludes_are_left_out_of_the_fit():
+    # the issue: dead taxels marked by calibration are excluded from the fit rather than
+    # read as zero; the calibrated readings are NaN there, which a fit refused outright
+    sensor = _faulty_resistive16()
+    calibration = calibrate(sensor, rng=1)
+    dead = ~calibration.valid
+    assert 3 <= np.count_nonzero(dead) <= 10
+    raw = sensor.press(make_indenter("sphere"), normal_force=2.0, rng=3).raw
+    readings = calibrated_readings(raw, calibration, sensor)
+    assert np.array_equal(np.isnan(readings), dead)
+    with pytest.raises(ValueError, match="`frame` must be finite at live taxels"):
+        reconstruct(readings, sensor)
+    for method in ("tikhonov", "support"):
+        result = reconstruct(readings, sensor, method=method, dead_taxels=dead)
+        assert result.normal_force == pytest.approx(2.0, rel=0.03), method
+    # a dead taxel under the contact (one of the four that feel 98 kPa; its neighbours feel
+    # 9 kPa) read as zero instead loses its share of the load
+    under = np.zeros(sensor.shape, dtype=bool)
+    under[7, 7] = True
+    spec = spec_from_sensor(sensor)
+    clean = -sensor.press(make_indenter("sphere"), normal_force=2.0).fields.stress  # felt
+    zeroed = np.where(under, 0.0, clean)
+    read_as_zero = reconstruct(zeroed, spec, method="support").normal_force
+    holes = np.where(under, np.nan, clean)
+    left_out = reconstruct(holes, spec, method="support", dead_taxels=under)
+    assert left_out.normal_force == pytest.approx(2.0, rel=0.02)
+    assert read_as_zero < 0.9 * 2.0  # 1.65 N

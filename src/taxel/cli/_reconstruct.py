@@ -77,7 +77,7 @@ def _run(arguments: argparse.Namespace) -> int:
     check_new_file(
         arguments.out, suffix=".npy", overwrite=arguments.overwrite, name="--out", inputs=(path,)
     )
-    frame, warnings = load_readings(path, arguments.sensor, arguments.calibration)
+    frame, warnings, excluded = load_readings(path, arguments.sensor, arguments.calibration)
     _check_batch(path, frame, arguments.method)
     for warning in warnings:
         sys.stderr.write(f"taxel reconstruct: warning: {warning}\n")
@@ -101,11 +101,13 @@ def _run(arguments: argparse.Namespace) -> int:
                 order=_order(arguments),
                 regularization=arguments.regularization,
                 noise_level=arguments.noise_level,
+                dead_taxels=excluded,
                 progress=bar,
             )
     except ValueError as error:  # the library names its `frame`; the user gave FRAME
         raise ValueError(str(error).replace("`frame`", f"`FRAME` {str(path)!r}")) from None
     centre = result.centroid_m
+    n_excluded = 0 if excluded is None else int(np.count_nonzero(excluded))
     second, second_rule = _support_stage(result)
     first = result.regularization if second is None else result.first_regularization
     summary = {
@@ -124,6 +126,7 @@ def _run(arguments: argparse.Namespace) -> int:
         "centroid_m": _finite_or_none(centre),
         "load_shape": list(spec.load_shape),
         "load_pitch_m": spec.load_pitch,
+        "excluded_taxels": n_excluded,
         "converged": result.converged,
         "out": str(arguments.out),
     }
@@ -137,6 +140,7 @@ def _run(arguments: argparse.Namespace) -> int:
             f"residual norm {_format(result.residual_norm)}{_unit(spec.reading_unit)}, "
             f"solution norm {_format(result.solution_norm)}{_unit(_penalty_unit(result))}, "
             f"force {_format(result.normal_force)} N{_centre_text(centre)}\n"
+            f"{_excluded_text(n_excluded, arguments.calibration)}"
             f"pressure map {result.pressure.shape} [Pa] written to {arguments.out}\n"
         )
     # written last: a run that fails before leaves no --out behind
@@ -144,6 +148,14 @@ def _run(arguments: argparse.Namespace) -> int:
         write_frame(arguments.out, result.pressure, overwrite=arguments.overwrite, inputs=(path,))
     sys.stdout.write(text)
     return 0
+
+
+def _excluded_text(count: int, calibration: str | None) -> str:
+    """A line naming the taxels the calibration left out of the fit, or '' for none."""
+    if not count:
+        return ""
+    taxels = "taxel" if count == 1 else "taxels"
+    return f"{count} {taxels} excluded by --calibration {calibration} (left out of the fit)\n"
 
 
 def _check_noise_level_is_used(arguments: argparse.Namespace) -> None:

@@ -21,14 +21,16 @@ _PAST_PEAK = " Or pressed past the peak of its response, where its reading falls
 
 def load_readings(
     path: Path, sensor_name: str, calibration_path: str | None
-) -> tuple[np.ndarray, list[str]]:
+) -> tuple[np.ndarray, list[str], np.ndarray | None]:
     """The readings of FRAME in the forward model's quantity, checked in range.
 
     Raw codes go through --calibration (`taxel.reconstruction.calibrated_readings`): to the
     pressure felt at depth [Pa], or for a displacement sensor to the surface displacement
     [m]. Real numbers without a calibration are taken as readings already. Also returns the
     warnings about raw readings the calibration does not cover: at or beyond its full scale,
-    or below its no-load level (none without a calibration).
+    or below its no-load level (none without a calibration), and the taxels the calibration
+    excluded (dead, stuck or saturated: NaN in the readings, left out of the fit), a
+    boolean mask, or None without a calibration.
     """
     from taxel.sensor import make_sensor
 
@@ -42,6 +44,7 @@ def load_readings(
             f"FRAME {str(path)!r} as the stress change each taxel felt [Pa], in real numbers"
         )
     warnings: list[str] = []
+    excluded = None
     if calibration_path is not None:
         from taxel.reconstruction import calibrated_readings
         from taxel.sensor import Calibration
@@ -62,6 +65,12 @@ def load_readings(
         _check_shape(path, frame, sensor)
         warnings = _uncovered(path, frame, calibration, sensor)
         frame = calibrated_readings(frame, calibration, sensor)
+        excluded = ~calibration.valid
+        if excluded.all():
+            raise ValueError(
+                f"--calibration {calibration_path} excludes every taxel of {sensor_name} "
+                "(none responds to load): there is nothing to reconstruct from"
+            )
     elif np.issubdtype(stored, np.integer):
         raise ValueError(
             f"`FRAME` {str(path)!r} holds raw codes ({stored}); give the sensor's "
@@ -69,7 +78,7 @@ def load_readings(
         )
     _check_shape(path, frame, sensor)
     _check_range(path, frame, sensor)
-    return frame, warnings
+    return frame, warnings, excluded
 
 
 def _uncovered(

@@ -9,7 +9,11 @@ from typing import Any, cast
 from taxel._validation import check_choice, check_progress
 from taxel.reconstruction._admm import ADMMSolver
 from taxel.reconstruction._result import ReconstructionResult
-from taxel.reconstruction._spec import ForwardModelSpec, as_forward_model_spec
+from taxel.reconstruction._spec import (
+    ForwardModelSpec,
+    as_forward_model_spec,
+    with_dead_taxels,
+)
 from taxel.reconstruction._support import SupportSolver
 from taxel.reconstruction._tikhonov import TikhonovSolver, check_order
 
@@ -44,16 +48,23 @@ def solver_for(
     order: int = 0,
     boundary: str = "auto",
     representation: str = "auto",
+    dead_taxels: Any = None,
 ) -> TikhonovSolver | ADMMSolver | SupportSolver:
     """The solver of a sensor, built on first use and cached (16 most recent).
+
+    `dead_taxels` (a boolean mask or (row, col) pairs, such as ``~calibration.valid``) are
+    left out of the fit, beside those the sensor's spec already marks dead; a solver is
+    built and cached for each set of dead taxels.
 
     Examples
     --------
     >>> first = solver_for("resistive16", method="tikhonov", order=1)
     >>> first is solver_for("resistive16", method="tikhonov", order=1)
     True
+    >>> solver_for("resistive16", dead_taxels=[(0, 3)]).spec.dead_taxels
+    ((0, 3),)
     """
-    spec = as_forward_model_spec(sensor)
+    spec = with_dead_taxels(as_forward_model_spec(sensor), dead_taxels)
     check_choice("method", method, METHODS)
     order = check_order(order)
     if method == "tv":
@@ -72,6 +83,7 @@ def reconstruct(
     tau: float = 1.0,
     boundary: str = "auto",
     representation: str = "auto",
+    dead_taxels: Any = None,
     progress: Callable[[int, int], object] | None = None,
 ) -> ReconstructionResult:
     """Recover the pressure field behind one tactile frame (or a batch, for linear methods).
@@ -102,6 +114,10 @@ def reconstruct(
         Safety factor of the discrepancy principle.
     boundary, representation : str
         See `forward_operator`.
+    dead_taxels : array_like of bool, shape (rows, cols), or sequence of (row, col), optional
+        Taxels to leave out of the fit (their readings may be NaN), beside those `sensor`
+        marks dead: the taxels a calibration excluded are ``~calibration.valid`` (see
+        `taxel.sensor.Calibration`), which `calibrated_readings` sets to NaN.
     progress : callable, optional
         Called as ``progress(done, total)`` by the iterative methods, nonneg and tv, after
         each iteration (see `ADMMSolver.solve`), ending at ``done = total``; the direct
@@ -138,7 +154,12 @@ def reconstruct(
     ((1, 10000), (10000, 10000))
     """
     solver = solver_for(
-        sensor, method=method, order=order, boundary=boundary, representation=representation
+        sensor,
+        method=method,
+        order=order,
+        boundary=boundary,
+        representation=representation,
+        dead_taxels=dead_taxels,
     )
     if isinstance(solver, ADMMSolver):
         return solver.solve(

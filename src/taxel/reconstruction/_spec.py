@@ -27,6 +27,7 @@ __all__ = [
     "plate_reading",
     "reading_quantity",
     "spec_from_sensor",
+    "with_dead_taxels",
 ]
 
 QUANTITIES: tuple[str, ...] = ("stress", "strain", "displacement")
@@ -168,6 +169,26 @@ class ForwardModelSpec:
     def with_changes(self, **changes: Any) -> ForwardModelSpec:
         """A copy with some fields replaced (e.g. ``oversampling=2``)."""
         return replace(self, **changes)
+
+
+def with_dead_taxels(spec: ForwardModelSpec, dead_taxels: Any) -> ForwardModelSpec:
+    """`spec` with `dead_taxels` (a boolean mask or (row, col) pairs) also left out.
+
+    `spec` itself when there are none to add (a solver cached for it is then reused).
+
+    Examples
+    --------
+    >>> spec = forward_model_preset("resistive16", dead_taxels=[(0, 0)])
+    >>> mask = np.zeros((16, 16), dtype=bool); mask[2, 5] = True
+    >>> with_dead_taxels(spec, mask).dead_taxels
+    ((0, 0), (2, 5))
+    """
+    if dead_taxels is None:
+        return spec
+    added = _as_taxel_list(dead_taxels, spec.shape)
+    if set(added) <= set(spec.dead_taxels):
+        return spec
+    return spec.with_changes(dead_taxels=tuple(sorted(set(spec.dead_taxels) | set(added))))
 
 
 def _as_taxel_list(dead: Any, shape: tuple[int, int]) -> tuple[tuple[int, int], ...]:
