@@ -653,7 +653,8 @@ def test_taxels_the_calibration_excludes_are_left_out_and_counted(tmp_path, caps
     sensor = replace(sensor, readout=replace(sensor.readout, dead=0.02))
     calibration = calibrate(sensor, rng=1)
     calibration.save(tmp_path / "cal.npz")
-    np.save(tmp_path / "raw.npy", sensor.press(make_indenter("sphere"), normal_force=2.0, rng=3).raw)
+    frame = sensor.press(make_indenter("sphere"), normal_force=2.0, rng=3)
+    np.save(tmp_path / "raw.npy", frame.raw)
     dead = int(np.count_nonzero(~calibration.valid))
     argv = ["reconstruct", str(tmp_path / "raw.npy"), "--sensor", "resistive16"]
     argv += ["--calibration", str(tmp_path / "cal.npz"), "--method", "support"]
