@@ -4,7 +4,14 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from taxel.active import Box, Probe, ProfileObject, SimulatedFinger, make_ball
+from taxel.active import (
+    Box,
+    Probe,
+    ProfileObject,
+    SimulatedFinger,
+    make_ball,
+    make_hollow_ball,
+)
 from taxel.frames import make_pose, transform_points
 from taxel.mechanics import ElasticMaterial, hertz_sphere, make_indenter
 from taxel.sensor import make_sensor
@@ -65,6 +72,44 @@ def test_elastic_ball_flattens_on_both_sides(sensor):
     assert ball.support_travel(12.0) == pytest.approx(table, rel=1e-12)
     squeeze = reading.travel - (0.06 - 57e-3)
     assert squeeze > 2 * table * 0.8  # the sensor side flattens about as much again
+
+
+def test_position_control_of_an_elastic_ball_counts_its_give_at_the_table():
+    # depth is the travel past the first touch (`Probe.press`): for a ball that also
+    # flattens on the table, the press's approach into the cover plus that give
+    ball = make_ball("rubber ball", 15e-3, ElasticMaterial(2e6, 0.49))
+    finger = SimulatedFinger(make_sensor("resistive16"), [ball], make_pose(DOWN, [0, 0, 0.035]))
+    forced = finger.press(normal_force=6.0)
+    finger.retract()
+    gap = forced.travel - forced.frame.contact.indentation - ball.support_travel(6.0)
+    again = finger.press(depth=forced.travel - gap)
+    assert again.frame.contact.normal_force == pytest.approx(6.0, rel=1e-4)
+    assert again.travel == pytest.approx(forced.travel, abs=1e-8)
+
+
+def test_a_hollow_ball_flattens_by_its_shell_at_both_poles():
+    wall = ElasticMaterial(3.62e6, 0.5)
+    ball = make_hollow_ball("racquet ball", 28.5e-3, 4e-3, wall)
+    finger = SimulatedFinger(make_sensor("resistive16"), [ball], make_pose(DOWN, [0, 0, 0.06]))
+    reading = finger.press(normal_force=12.0)
+    delta = ball.shell.deflection(12.0)
+    assert ball.flattening(12.0) == ball.support_travel(12.0) == delta
+    contact = reading.frame.contact
+    # the travel: the gap (3 mm, to the load grid's nearest cell, 1.4 mm off the top),
+    # the cover's indentation by the flattened disc, and both poles' flattening
+    gap = reading.travel - contact.indentation - 2 * delta
+    assert gap == pytest.approx(0.06 - 57e-3 + 28.5e-3 - np.sqrt(28.5e-3**2 - 2e-6), abs=1e-9)
+    # the sensor meets the flattened disc: its area, pi (2 R delta - delta^2), 3.5 cm^2
+    disc = np.pi * ball.shell.contact_radius(delta) ** 2
+    assert contact.contact_area == pytest.approx(disc, rel=0.1)
+    # position control: the force whose press travels the given depth past the first touch
+    finger.retract()
+    again = finger.press(depth=reading.travel - gap)
+    assert again.frame.contact.normal_force == pytest.approx(12.0, rel=1e-4)
+    assert again.travel == pytest.approx(reading.travel, abs=1e-8)
+    finger.retract()
+    with pytest.raises(ValueError, match="`depth` .* needs more than the finger's limit"):
+        finger.press(depth=20e-3)
 
 
 def test_off_centre_contact_gives_a_torque(sensor):

@@ -109,6 +109,8 @@ def test_stiffness_tells_the_racquet_ball_from_the_acrylic_sphere(capsys, small_
     assert out.startswith("racquet ball touched at 0.5 N, then pressed at 12 N and 39 N on ")
     assert "verdict: deformable" in out
     assert "inf" not in out  # a pad whose compression did not grow is said so, not "inf N/m"
+    assert "the seed (Ellis 2.2, its 128 x 128 sensor): height 57 / 53 / 47 mm" in out
+    assert "area 674 -> 4681 pixels at 12 N -> 39 N" in out
     assert main(["active", "stiffness", "--object", "acrylic sphere", "--calibration", pad]) == 0
     assert "verdict: rigid" in capsys.readouterr().out
 
@@ -206,6 +208,15 @@ def test_stiffness_of_a_custom_ball_and_bad_files(capsys, small_files, tmp_path)
         == 0
     )
     assert json.loads(capsys.readouterr().out)["deformable"] is True  # 1 MPa: softer than the pad
+    # a tennis ball: a hollow rubber ball inflated to 90 kPa (its air carries most of the load)
+    hollow = ["active", "stiffness", "--shape", "hollow-ball", "--size-mm", "33.5"]
+    hollow += ["--modulus-mpa", "4", "--wall-mm", "3.3", "--gauge-kpa", "90"]
+    assert main([*hollow, "--calibration", pad, "--json"]) == 0
+    tennis = json.loads(capsys.readouterr().out)
+    assert tennis["deformable"] is True
+    # the finger's travel from 12 to 39 N: 2 x (3.50 - 1.07) / 2 mm of the shell's give
+    heights = tennis["heights_m"]
+    assert heights[1] - heights[2] == pytest.approx(2.43e-3, abs=0.05e-3)
     broken = tmp_path / "broken.json"
     broken.write_text('{"format": "taxel.pad_calibration"}')
     assert main(["active", "stiffness", "--calibration", str(broken)]) == 2
@@ -255,6 +266,27 @@ def test_a_wrong_or_deeply_nested_file_names_its_flag(capsys, tmp_path, procedur
         (
             ["stiffness", "--shape", "ball", "--size-mm", "20"],
             "--shape ball needs its --size-mm and --modulus-mpa",
+        ),
+        (
+            ["stiffness", "--shape", "hollow-ball", "--size-mm", "20", "--modulus-mpa", "4"],
+            "--shape hollow-ball needs its --wall-mm",
+        ),
+        (
+            [
+                "stiffness",
+                "--shape",
+                "block",
+                "--size-mm",
+                "20",
+                "--modulus-mpa",
+                "4",
+                "--wall-mm=2",
+            ],
+            "--wall-mm and --gauge-kpa describe a hollow ball, not a --shape block",
+        ),
+        (
+            ["stiffness", "--shape=hollow-ball", "--size-mm=10", "--modulus-mpa=4", "--wall-mm=6"],
+            "--wall-mm 6 must be under half the --size-mm 10",
         ),
         (  # a named object is pressed as it is: never silently replaced or altered
             ["stiffness", "--object", "steel ball", "--shape", "ball", "--size-mm", "20"],

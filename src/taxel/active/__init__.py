@@ -2,7 +2,7 @@
 
 Robot side: scene, probe interface, simulated finger
 ----------------------------------------------------
-SceneObject, ProfileObject, Box, make_ball, Probe, ProbeReading, NoContactError,
+SceneObject, ProfileObject, Box, make_ball, make_hollow_ball, Probe, ProbeReading, NoContactError,
 SimulatedFinger, finger_force_limit, ProcedureStep, step_from_reading
 
 Surface normal, planarity, edges and corners by probing
@@ -43,8 +43,9 @@ build_edge_radius_table, DEFAULT_EDGE_RADII, sharpest_edge_radius, largest_edge_
 
 Deformation and stiffness (touch, light and firm press)
 -------------------------------------------------------
-Deformation, DeformationResult, measure_deformation, make_deformation_object,
-DEFORMATION_OBJECTS, make_block, PadCalibration, calibrate_pad, core_area
+Deformation, DeformationResult, measure_deformation, deflection_exponent,
+make_deformation_object, DEFORMATION_OBJECTS, WALL_THICKNESS, make_block, PadCalibration,
+calibrate_pad, core_area
 
 Recognition against a library of object models (up to three touches)
 --------------------------------------------------------------------
@@ -64,7 +65,12 @@ from taxel.active._deformable_objects import (
     make_block,
     make_deformation_object,
 )
-from taxel.active._deformation import Deformation, DeformationResult, measure_deformation
+from taxel.active._deformation import (
+    Deformation,
+    DeformationResult,
+    deflection_exponent,
+    measure_deformation,
+)
 from taxel.active._edge_radius import (
     DEFAULT_EDGE_RADII,
     EdgeRadius,
@@ -99,7 +105,7 @@ from taxel.active._probing_trials import (
 from taxel.active._procedure import ProcedureStep, step_from_reading
 from taxel.active._recognition import Recognition, RecognitionResult
 from taxel.active._recognize import DESCRIPTOR_NAMES, build_model_library, recognize_object
-from taxel.active._scene import Box, ProfileObject, SceneObject, make_ball
+from taxel.active._scene import Box, ProfileObject, SceneObject, make_ball, make_hollow_ball
 from taxel.active._sliding_texture import (
     SLIDING_BAND_EDGES,
     Grating,
@@ -162,6 +168,7 @@ __all__ = [
     "SLIDING_BAND_EDGES",
     "SLIP_DISPLACEMENT",
     "TOUCH_FEATURES",
+    "WALL_THICKNESS",
     "Box",
     "ContactPoint",
     "ContactPointCalibration",
@@ -216,6 +223,7 @@ __all__ = [
     "core_area",
     "corner_probing_trial",
     "cross_validate_texture",
+    "deflection_exponent",
     "describe_models",
     "detect_slip",
     "edge_cross_section",
@@ -232,6 +240,7 @@ __all__ = [
     "make_block",
     "make_deformation_object",
     "make_edge",
+    "make_hollow_ball",
     "make_model",
     "measure_deformation",
     "measure_edge_radius",

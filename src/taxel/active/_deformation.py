@@ -29,7 +29,7 @@ from taxel.features import contact_regions, prepare
 from taxel.frames import make_pose, transform_directions
 from taxel.sensor import TactileSensor
 
-__all__ = ["Deformation", "DeformationResult", "measure_deformation"]
+__all__ = ["Deformation", "DeformationResult", "deflection_exponent", "measure_deformation"]
 
 _HERTZ_EXPONENT = 2.0 / 3.0  # deformation of curved bodies grows as F^(2/3)
 _DOWN = np.diag([1.0, -1.0, -1.0])
@@ -65,8 +65,12 @@ class DeformationResult:
     heights : tuple of float
         Height of the object's top above the table in each press [m].
     unloaded_height : float
-        The object's height without load, extrapolated from the touch and light presses
-        with deformation growing as F^(2/3) [m].
+        The object's height without load [m], extrapolated from the three presses with
+        its deformation growing as F^n (`deflection_exponent`).
+    deflection_exponent : float
+        n of the object's deformation h0 - h = c F^n, fitted to the three heights: 2/3
+        for a solid curved body (Hertz), about 1 for a hollow ball's bending wall; 2/3
+        when the heights do not tell (a rigid object, or heights within the noise).
     height_change : float
         Height at the light press minus height at the firm press [m].
     areas : tuple of float
@@ -93,6 +97,7 @@ class DeformationResult:
     pad_compressions: tuple[float, ...]
     heights: tuple[float, ...]
     unloaded_height: float
+    deflection_exponent: float
     height_change: float
     areas: tuple[float, ...]
     area_pixels: tuple[int, ...]
@@ -118,6 +123,7 @@ class DeformationResult:
             "pad_compressions_m": list(self.pad_compressions),
             "heights_m": list(self.heights),
             "unloaded_height_m": self.unloaded_height,
+            "deflection_exponent": self.deflection_exponent,
             "height_change_m": self.height_change,
             "areas_m2": list(self.areas),
             "area_pixels": list(self.area_pixels),
@@ -264,6 +270,39 @@ class Deformation:
         return _integrate(forces, travels, pads, heights, areas, pixels, intensities, steps)
 
 
+def deflection_exponent(forces: Sequence[float], heights: Sequence[float]) -> float:
+    """The exponent n of h = h0 - c F^n through three (force, height) presses [N, m].
+
+    2/3 (Hertz) when the heights do not fall with the force, or fall in a ratio no
+    exponent in [0.2, 3] gives (heights within their noise).
+
+    Examples
+    --------
+    >>> forces = (0.5, 12.0, 39.0)
+    >>> round(deflection_exponent(forces, [0.05 - 1e-4 * f for f in forces]), 6)  # linear
+    1.0
+    >>> round(deflection_exponent(forces, [0.05 - 1e-4 * f ** (2 / 3) for f in forces]), 6)
+    0.666667
+    >>> deflection_exponent(forces, [0.0125, 0.0125, 0.0125])  # a rigid object
+    0.6666666666666666
+    """
+    from scipy.optimize import brentq
+
+    touch, light, firm = forces
+    first, second = heights[0] - heights[1], heights[0] - heights[2]
+    if not (first > 0 and second > first):
+        return _HERTZ_EXPONENT
+    ratio = first / second
+
+    def excess(n: float) -> float:
+        return (light**n - touch**n) / (firm**n - touch**n) - ratio
+
+    low, high = 0.2, 3.0  # the fraction falls as n grows
+    if not excess(high) < 0.0 < excess(low):
+        return _HERTZ_EXPONENT
+    return float(brentq(excess, low, high, xtol=1e-12))
+
+
 def _ratio(numerator: float, denominator: float) -> float:
     return numerator / denominator if denominator > 0 else math.inf
 
@@ -285,10 +324,11 @@ def _integrate(
     deformation = max(travel_change - pad_change, 0.0)
     deformability = _ratio(deformation, pad_change)
     deformable = deformation > pad_change
-    # deformation from zero load grows as F^(2/3): extrapolate the touch back to no load
+    # deformation from zero load grows as F^n: extrapolate the touch back to no load
+    exponent = deflection_exponent(forces, heights)
     sink = max(heights[0] - heights[1], 0.0)
-    scale = sink / (light**_HERTZ_EXPONENT - touch**_HERTZ_EXPONENT)
-    unloaded = heights[0] + scale * touch**_HERTZ_EXPONENT
+    scale = sink / (light**exponent - touch**exponent)
+    unloaded = heights[0] + scale * touch**exponent
     verdict = "deformable" if deformable else "rigid"
     message = (
         f"{verdict}: between {light:g} and {firm:g} N the object gave "
@@ -305,6 +345,7 @@ def _integrate(
         pad_compressions=tuple(pads),
         heights=tuple(heights),
         unloaded_height=float(unloaded),
+        deflection_exponent=float(exponent),
         height_change=float(heights[1] - heights[2]),
         areas=tuple(areas),
         area_pixels=tuple(pixels),
@@ -332,6 +373,8 @@ def measure_deformation(
     size: float | None = None,
     youngs_modulus: float | None = None,
     poisson_ratio: float | None = None,
+    thickness: float | None = None,
+    gauge_pressure: float = 0.0,
 ) -> DeformationResult:
     """Simulate the touch, light and firm press on an object and judge its deformation.
 
@@ -348,12 +391,12 @@ def measure_deformation(
         The touch that finds the surface [N].
     calibration : PadCalibration or path, optional
         The pad calibration at (touch, light, firm); None calibrates in simulation
-        (`calibrate_pad`, about 20 s, then kept for the session).
+        (`calibrate_pad`, a few seconds, then kept for the session).
     rng : numpy.random.Generator or int, optional
         Sensor noise (None: noise-free frames).
-    shape, size, youngs_modulus, poisson_ratio : optional
+    shape, size, youngs_modulus, poisson_ratio, thickness, gauge_pressure : optional
         With a name, build the object from these (see `make_deformation_object`): any
-        ball or cube, named or not.
+        solid or hollow ball or cube, named or not.
 
     Returns
     -------
@@ -394,6 +437,8 @@ def measure_deformation(
             size=size,
             youngs_modulus=youngs_modulus,
             poisson_ratio=poisson_ratio,
+            thickness=thickness,
+            gauge_pressure=gauge_pressure,
         )
     else:
         target = item

@@ -168,16 +168,12 @@ class SimulatedFinger:
                 pressure=np.where(solid, initial.pressure, 0.0),
                 contact=initial.contact & solid,
             )
-        contact = solve_contact(
-            heights,
-            self._sensor.load_grid.spacing,
-            self._sensor.cover.material,
-            normal_force=normal_force,
-            indentation=depth,
-            indenter_material=nearest.material,
-            thickness=self._sensor.cover.thickness,
-            initial=initial,
-        )
+        if depth is not None and nearest.flattening(1.0) + nearest.support_travel(1.0) > 0.0:
+            # the object also gives way by its force (a hollow ball's shell, an elastic
+            # ball on the table): find the force whose press travels `depth` past the touch
+            normal_force, depth = self._force_for_depth(heights, nearest, depth), None
+        flat = 0.0 if normal_force is None else nearest.flattening(normal_force)
+        contact = self._solve(heights, nearest, flat, normal_force, depth, initial)
         # a force-controlled press was checked above (its result may differ by rounding)
         if depth is not None and contact.normal_force > self.max_force:
             raise ValueError(
@@ -185,7 +181,8 @@ class SimulatedFinger:
                 f"limit {self.max_force:g} N; the finger did not move"
             )
         support = nearest.support_travel(contact.normal_force)
-        compression = support + contact.indentation * self._object_share(nearest.material)
+        share = self._object_share(nearest.contact_material)
+        compression = support + flat + contact.indentation * share
         height = getattr(nearest, "top", None)
         if height is not None and compression > _LARGEST_COMPRESSION * height:
             raise ValueError(
@@ -195,8 +192,52 @@ class SimulatedFinger:
                 "finger did not move"
             )
         self._last = contact
-        travel = first_touch + contact.indentation + support
+        travel = first_touch + contact.indentation + flat + support
         return self._reading(contact, travel)
+
+    def _solve(
+        self,
+        heights: np.ndarray,
+        item: SceneObject,
+        flat: float,
+        normal_force: float | None,
+        depth: float | None,
+        initial: ContactResult | None,
+    ) -> ContactResult:
+        """The contact with `item`, its surface first flattened by `flat` [m] (a shell's)."""
+        if flat > 0.0:  # the flattened disc, where the surface came within `flat` of it
+            heights = np.maximum(heights - flat, 0.0)
+        return solve_contact(
+            heights,
+            self._sensor.load_grid.spacing,
+            self._sensor.cover.material,
+            normal_force=normal_force,
+            indentation=depth,
+            indenter_material=item.contact_material,
+            thickness=self._sensor.cover.thickness,
+            initial=initial,
+        )
+
+    def _force_for_depth(self, heights: np.ndarray, item: SceneObject, depth: float) -> float:
+        """The force [N] whose press travels `depth` [m] past the first touch.
+
+        The travel is the contact's approach (the cover's and the object's surface), the
+        object's own flattening (a shell's) and its give at the table; it grows with the
+        force.
+        """
+        from scipy.optimize import brentq
+
+        def excess(force: float) -> float:
+            flat = item.flattening(force)
+            contact = self._solve(heights, item, flat, force, None, None)
+            return contact.indentation + flat + item.support_travel(force) - depth
+
+        if excess(self.max_force) < 0.0:
+            raise ValueError(
+                f"`depth` {depth:g} m needs more than the finger's limit {self.max_force:g} N; "
+                "the finger did not move"
+            )
+        return float(brentq(excess, 1e-6 * self.max_force, self.max_force, rtol=1e-6))
 
     def _object_share(self, material: Any) -> float:
         """The object's share of the approach: its compliance over both bodies' (Hertz)."""

@@ -21,9 +21,16 @@ import numpy as np
 
 from taxel._validation import check_instance, check_pair, check_positive
 from taxel.frames import as_pose, invert_pose, transform_directions, transform_points
-from taxel.mechanics import ElasticMaterial, Indenter, Sphere, effective_modulus, hertz_sphere
+from taxel.mechanics import (
+    ElasticMaterial,
+    HollowSphere,
+    Indenter,
+    Sphere,
+    effective_modulus,
+    hertz_sphere,
+)
 
-__all__ = ["Box", "ProfileObject", "SceneObject", "make_ball"]
+__all__ = ["Box", "ProfileObject", "SceneObject", "make_ball", "make_hollow_ball"]
 
 _MISS = np.inf
 
@@ -74,6 +81,19 @@ class SceneObject(ABC):
         """
         return 0.0
 
+    def flattening(self, normal_force: float) -> float:
+        """How far [m] the object's own structure gives way where the sensor presses it.
+
+        A hollow ball's wall flattens against the sensor (see `make_hollow_ball`); a solid
+        object's deformation near the contact is the contact solver's, so it adds nothing.
+        """
+        return 0.0
+
+    @property
+    def contact_material(self) -> ElasticMaterial | None:
+        """The elasticity the contact solver gives the object's surface (None: rigid)."""
+        return self.material
+
 
 @dataclass(frozen=True, eq=False)
 class ProfileObject(SceneObject):
@@ -95,11 +115,16 @@ class ProfileObject(SceneObject):
     support_radius : float, optional
         For a ball on the table: its radius [m]; the ball then also flattens (Hertz) against
         the rigid table when pressed.
+    shell : HollowSphere, optional
+        For a hollow ball: its wall and air, which flatten by the same amount against the
+        sensor and against the table (`taxel.mechanics.HollowSphere`); the flattened
+        surface then meets the sensor's cover as a rigid body.
     """
 
     profile: Indenter | None = None
     top: float = 0.01
     support_radius: float | None = None
+    shell: HollowSphere | None = None
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -108,6 +133,8 @@ class ProfileObject(SceneObject):
         check_positive("top", self.top)
         if self.support_radius is not None:
             check_positive("support_radius", self.support_radius)
+        if self.shell is not None:
+            check_instance("shell", self.shell, HollowSphere)
 
     def local_distances(self, origins: np.ndarray, direction: np.ndarray) -> np.ndarray:
         if direction[2] >= -1e-6:
@@ -133,10 +160,21 @@ class ProfileObject(SceneObject):
         return np.where(hit & np.isfinite(t), t, _MISS)
 
     def support_travel(self, normal_force: float) -> float:
+        if self.shell is not None:
+            return self.shell.deflection(normal_force)  # its pole on the table
         if self.support_radius is None or self.material is None:
             return 0.0
         table = hertz_sphere(normal_force, self.support_radius, effective_modulus(self.material))
         return table.indentation  # flattening against the rigid table
+
+    def flattening(self, normal_force: float) -> float:
+        return 0.0 if self.shell is None else self.shell.deflection(normal_force)
+
+    @property
+    def contact_material(self) -> ElasticMaterial | None:
+        # a hollow ball's give is its shell's (in `flattening`): its surface meets the
+        # cover as a rigid body, else the wall's elasticity would count twice
+        return None if self.shell is not None else self.material
 
 
 def make_ball(
@@ -166,6 +204,44 @@ def make_ball(
         profile=Sphere(radius),
         top=2 * radius,
         support_radius=radius,
+    )
+
+
+def make_hollow_ball(
+    name: str,
+    radius: float,
+    thickness: float,
+    material: ElasticMaterial,
+    *,
+    gauge_pressure: float = 0.0,
+    sealed: bool = True,
+    position: tuple[float, float] = (0.0, 0.0),
+) -> ProfileObject:
+    """A hollow ball of `radius` [m] with a wall `thickness` [m] thick, lying on the table.
+
+    Pressed by the sensor with force F, its wall bends and its air is compressed (see
+    `taxel.mechanics.HollowSphere`): it flattens by delta(F) at the sensor and again at the
+    table, and the sensor meets a flattened disc of radius sqrt(2 R delta - delta^2), not a
+    Hertz contact. `material` is the wall's.
+
+    Examples
+    --------
+    >>> from taxel.mechanics import ElasticMaterial
+    >>> ball = make_hollow_ball("racquet ball", 28.5e-3, 4e-3, ElasticMaterial(3.62e6, 0.5))
+    >>> round((ball.flattening(12.0) + ball.support_travel(12.0)) * 1e3, 2)  # [mm]
+    4.0
+    """
+    check_instance("material", material, ElasticMaterial)
+    shell = HollowSphere(radius, thickness, material, gauge_pressure=gauge_pressure, sealed=sealed)
+    pose = np.eye(4)
+    pose[:2, 3] = check_pair("position", position)
+    return ProfileObject(
+        name=name,
+        pose=pose,
+        material=material,
+        profile=Sphere(radius),
+        top=2 * shell.radius,
+        shell=shell,
     )
 
 

@@ -173,8 +173,9 @@ def register(commands: argparse._SubParsersAction) -> None:
     )
     stiff.add_argument(
         "--shape",
-        choices=("ball", "block"),
-        help="instead of --object, a custom ball or block: give its --size-mm and --modulus-mpa",
+        choices=("ball", "hollow-ball", "block"),
+        help="instead of --object, a custom solid or hollow ball or a block: give its "
+        "--size-mm and --modulus-mpa (and a hollow ball's --wall-mm)",
     )
     stiff.add_argument(
         "--size-mm", type=positive_in(0.0, 1000.0), help="ball radius or block edge [mm], <= 1000"
@@ -182,7 +183,17 @@ def register(commands: argparse._SubParsersAction) -> None:
     stiff.add_argument(
         "--modulus-mpa",
         type=positive_in(1e-6, 1e7),
-        help="its Young's modulus [MPa], 1e-6 (1 Pa) to 1e7 (10 TPa)",
+        help="its Young's modulus [MPa], 1e-6 (1 Pa) to 1e7 (10 TPa); a hollow ball's wall's",
+    )
+    stiff.add_argument(
+        "--wall-mm",
+        type=positive_in(0.0, 500.0),
+        help="a hollow ball's wall thickness [mm], under half its radius",
+    )
+    stiff.add_argument(
+        "--gauge-kpa",
+        type=real_in(0.0, 1e4),
+        help="a hollow ball's air pressure above the atmosphere's [kPa] (0; a tennis ball ~90)",
     )
     stiff.add_argument(
         "--poisson-ratio", type=real_in(-0.999, 0.5), help="its Poisson's ratio (0.5)"

@@ -308,7 +308,15 @@ _CUSTOM_FLAGS = (
     ("--size-mm", "size_mm"),
     ("--modulus-mpa", "modulus_mpa"),
     ("--poisson-ratio", "poisson_ratio"),
+    ("--wall-mm", "wall_mm"),
+    ("--gauge-kpa", "gauge_kpa"),
 )
+# the seed's numbers (Ellis, section 2.2) beside a named object's: heights at no load, 12 N
+# and 39 N [mm]; imprint areas at 12 N and 39 N [pixels]
+_SEED = {
+    "racquet ball": ("57 / 53 / 47", "674 -> 4681"),
+    "acrylic sphere": ("12.5 / 12.5 / 12.5", "289 -> 487"),
+}
 
 
 def _deformation_object(arguments: argparse.Namespace) -> str:
@@ -345,6 +353,18 @@ def _deformation_object(arguments: argparse.Namespace) -> str:
         raise CommandLineError(
             f"--shape {arguments.shape} needs its --size-mm and --modulus-mpa "
             "(and optionally --poisson-ratio)"
+        )
+    hollow = arguments.shape == "hollow-ball"
+    if hollow and arguments.wall_mm is None:
+        raise CommandLineError("--shape hollow-ball needs its --wall-mm (the wall's thickness)")
+    if not hollow and (arguments.wall_mm is not None or arguments.gauge_kpa is not None):
+        raise CommandLineError(
+            f"--wall-mm and --gauge-kpa describe a hollow ball, not a --shape {arguments.shape}"
+        )
+    if hollow and not arguments.wall_mm < arguments.size_mm / 2:
+        raise CommandLineError(
+            f"--wall-mm {arguments.wall_mm:g} must be under half the --size-mm "
+            f"{arguments.size_mm:g} (a hollow ball's radius)"
         )
     return f"custom {arguments.shape}"
 
@@ -416,10 +436,12 @@ def stiffness(arguments: argparse.Namespace) -> int:
             forces=tuple(arguments.forces),
             calibration=calibration,
             rng=arguments.seed,
-            shape=arguments.shape,
+            shape=None if arguments.shape is None else arguments.shape.replace("-", " "),
             size=None if arguments.size_mm is None else arguments.size_mm * 1e-3,
             youngs_modulus=None if arguments.modulus_mpa is None else arguments.modulus_mpa * 1e6,
             poisson_ratio=arguments.poisson_ratio,
+            thickness=None if arguments.wall_mm is None else arguments.wall_mm * 1e-3,
+            gauge_pressure=0.0 if arguments.gauge_kpa is None else arguments.gauge_kpa * 1e3,
         )
     lines = [
         f"{name} touched at {result.forces[0]:g} N, then pressed at "
@@ -435,4 +457,11 @@ def stiffness(arguments: argparse.Namespace) -> int:
         "height: " + " / ".join(f"{h * 1e3:.2f}" for h in result.heights) + " mm",
         "contact area: " + " -> ".join(f"{a:.0f}" for a in result.area_pixels) + " pixels",
     ]
+    seed = _SEED.get(name) if arguments.sensor == "vhdta128" else None
+    if seed is not None:  # the seed's sensor: its numbers beside ours
+        lines.append(
+            f"the seed (Ellis 2.2, its 128 x 128 sensor): height {seed[0]} mm unloaded / at "
+            f"12 N / at 39 N, area {seed[1]} pixels at 12 N -> 39 N; here unloaded "
+            f"{result.unloaded_height * 1e3:.1f} mm"
+        )
     return _emit(arguments, result.to_dict(), lines, built)

@@ -18,6 +18,8 @@ In-plane stress at depth (photoelasticity)
     inplane_stress_difference
 Closed-form contacts
     hertz_sphere, hertz_cylinder, flat_punch
+Hollow balls (a shell with air inside, flattened by a plate)
+    HollowSphere, ATMOSPHERIC_PRESSURE
 Contact with unknown contact area
     solve_contact, ContactResult
 Indenters
@@ -70,6 +72,7 @@ from taxel.mechanics._plane_strain import (
     plane_strain_strain_matrix,
     strip_load_strain,
 )
+from taxel.mechanics._shell import ATMOSPHERIC_PRESSURE, HollowSphere
 from taxel.mechanics._textures import PerforatedScreen, StiffFoam, WoodRasp
 from taxel.mechanics._transfer import (
     halfspace_displacement_transfer,
@@ -81,6 +84,7 @@ from taxel.mechanics._transfer import (
 )
 
 __all__ = [
+    "ATMOSPHERIC_PRESSURE",
     "INDENTER_NAMES",
     "BoxCorner",
     "BoxEdge",
@@ -93,6 +97,7 @@ __all__ = [
     "ElasticMaterial",
     "FlatPunch",
     "HeightMap",
+    "HollowSphere",
     "Indenter",
     "PerforatedScreen",
     "PlateWithHole",
