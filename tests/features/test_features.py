@@ -46,6 +46,9 @@ CASES = [
     ("point", cone, {"centre": (7.0, -12.0)}),
     ("surface", sphere, {"radius": 14.0}),
     ("surface", flat_punch, {"centre": (-5.0, 3.0)}),
+    # a disc wider than the array, its rim left only at the four corners: each corner's
+    # piece of it is nearly straight, but no one line runs through them (it read "line")
+    ("surface", flat_punch, {"radius": 75.0}),
     ("line", band, {"angle": 0.4}),
     ("line", band, {"angle": 1.2, "wedge": True, "half_width": 3.0}),
     ("arc", arc, {}),

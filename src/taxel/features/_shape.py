@@ -23,8 +23,9 @@ point     a tip, or a contact too small for the   one compact region (axes withi
 corner    a vertex (box corner): the contact      a compact region larger than the point
           spreads along the three edges that      size and 8 taxels whose outline has three
           leave it, a rounded triangle            lobes (3rd harmonic of radius >= 0.08)
-line      a face whose straight edge crosses      the only free outline is straight over
-          the array (half-plane)                  8 taxels or more
+line      a face whose straight edge crosses      the free outline is straight over 8
+          the array (half-plane)                  taxels or more (its pieces, if several,
+                                                  along one line)
 corner    a face with a vertex (wedge)            a free outline of two straight arms
                                                   meeting at <= 150 deg that fit it
                                                   better than one circle
@@ -234,9 +235,25 @@ def _free_outline(
         if arms[0] <= allowed and arms[1] <= _CORNER_ANGLE and arms[0] < round_spread:
             return "corner", max(corner, 0.5), corner, "free outline with a vertex"
         best_corner = max(best_corner, corner)
+    if straight and len(chains) > 1 and not _one_line(chains):
+        # straight pieces that no one line runs through: a curved outline clipped by the
+        # array (a broad disc's rim left only at the array's corners), not an edge
+        return "surface", 0.7, best_corner, "face with a curved free outline"
     if straight:
         return "line", 0.8, best_corner, "face with a straight free outline"
     return "surface", 0.7, best_corner, "face with a curved free outline"
+
+
+def _one_line(chains: Sequence[tuple[np.ndarray, np.ndarray]]) -> bool:
+    """Whether the free outline's pieces lie along one straight line.
+
+    They do where an edge's outline is interrupted (by a gap, or by a stretch near the
+    array's border).
+    """
+    x = np.concatenate([chain[0] for chain in chains])
+    y = np.concatenate([chain[1] for chain in chains])
+    spread, extent = line_spread(x, y)
+    return spread <= tolerance(extent)
 
 
 def shape_core(
