@@ -75,6 +75,29 @@ def test_contact_type(expected, pattern, parameters, ftir):
     assert classify_contact(image, PITCH).contact_type == expected
 
 
+@pytest.mark.parametrize(
+    ("pattern", "parameters", "edge"),
+    [
+        (band, {"angle": 0.4}, True),
+        (half_plane, {"angle": 0.3}, True),
+        (arc, {}, True),  # a curved edge is an edge
+        (flat_punch, {"centre": (-5.0, 3.0)}, False),
+        (sphere, {"radius": 14.0}, False),
+        (washer, {}, False),
+        (plate_with_hole, {"centre": (10.0, 5.0)}, False),
+        (plate_with_slot, {"angle": 0.3}, False),
+        (texture, {}, False),
+        (flat_punch, {"radius": 75.0}, False),
+    ],
+)
+def test_edge_score_tells_edges_from_surfaces(pattern, parameters, edge):
+    # it was a ramp of the region's elongation alone: 1.0 on a washer, a plate with a hole
+    # and a texture (their regions are as thin as their holes and gaps leave them)
+    image = render(pattern, ftir=True, noise=0.04, scratches=3, rng=5, **parameters)
+    score = classify_contact(image, PITCH).edge_score
+    assert score >= 0.9 if edge else score <= 0.1
+
+
 @pytest.mark.parametrize("angle", [0.0, 0.7, 1.9, 2.6])
 @pytest.mark.parametrize(
     ("expected", "pattern", "extra"),

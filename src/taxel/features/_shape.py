@@ -149,8 +149,11 @@ class ContactShape:
     confidence : float
         How clearly the deciding measure passed its threshold, in [0, 1].
     edge_score : float
-        Evidence in [0, 1] that the contact is an edge (a long narrow band) rather than a
-        gently curved surface: a ramp of the elongation from 1 (0) to 2 (1).
+        Evidence in [0, 1] that the contact is an edge rather than a surface. A band or a
+        compact contact: a ramp of its elongation from 1 (0) to 2 (1). A face reaching the
+        array's border: 1 when its free outline is one straight line (the object's edge
+        crosses the array), 0 when it is curved or has a vertex. 0 for a texture, a face
+        with holes or slots, a face with no free outline, and a wide curved strip.
     corner_score : float
         Evidence in [0, 1] that the contact is a vertex rather than an edge or a surface.
     line : LineFit or None
@@ -290,7 +293,9 @@ def shape_core(
     three: float | None = None
     line = circle = None
 
-    def result(kind: str, confidence: float, corner: float, rule: str) -> ContactShape:
+    def result(
+        kind: str, confidence: float, corner: float, rule: str, edge: float | None = None
+    ) -> ContactShape:
         fitted_line, fitted_circle = line, circle
         if fitted_line is None:
             fit = outline_fit() if callable(outline_fit) else outline_fit
@@ -304,26 +309,29 @@ def shape_core(
             fitted_line = to_metres_line(fitted_line, prepared)
             fitted_circle = to_metres_circle(fitted_circle, prepared)
         return ContactShape(
-            kind, float(confidence), edge_score, float(corner), fitted_line, fitted_circle,
+            kind, float(confidence), edge_score if edge is None else edge, float(corner),
+            fitted_line, fitted_circle,
             len(outline), thickness * pitch, float(elongation), concentration,
             None if size is None else size * pitch, None if three is None else float(three),
             rule,
         )  # fmt: skip
 
+    # a face's region is as long as it is thin wherever holes or gaps cut it: its
+    # elongation says nothing of an edge, so the rules below that decide a face set it
     if is_textured(contact, high_point_count):
         if high_point_count >= _MANY_HIGH_POINTS:
-            return result("surface", 1.0, 0.0, "many high points (texture)")
-        return result("surface", 1.0, 0.0, "several contacts (texture)")
+            return result("surface", 1.0, 0.0, "many high points (texture)", 0.0)
+        return result("surface", 1.0, 0.0, "several contacts (texture)", 0.0)
     if n_holes >= _MANY_HOLES:
-        return result("surface", 1.0, 0.0, "several holes (perforated face)")
+        return result("surface", 1.0, 0.0, "several holes (perforated face)", 0.0)
     if n_holes or n_slots:
-        return result("surface", 1.0, 0.0, "face with a hole or a slot")
+        return result("surface", 1.0, 0.0, "face with a hole or a slot", 0.0)
     if elongation >= _BAND:
         line, circle, length = band_fits(prepared, main, thickness)
         bow = sagitta(circle.radius_m, length)
         if bow >= _MIN_SAGITTA and circle.rms_m < line.rms_m:
             if thickness > _RIM_WIDTH * circle.radius_m:
-                return result("surface", 0.7, 0.0, "wide curved strip (part of a face)")
+                return result("surface", 0.7, 0.0, "wide curved strip (part of a face)", 0.0)
             return result("arc", ramp(bow, 1.0, 4.0), 0.0, "curved band")
         return result("line", ramp(elongation, 1.0, 2.0), 0.0, "straight band")
     region = contact.regions[0]
@@ -346,8 +354,8 @@ def shape_core(
         return result("surface", 1.0 - corner, corner, "compact face")
     decided = _free_outline(contours, prepared, explained)
     if decided is None:
-        return result("surface", 1.0, 0.0, "face with a closed or no free outline")
-    return result(*decided)
+        return result("surface", 1.0, 0.0, "face with a closed or no free outline", 0.0)
+    return result(*decided, 1.0 if decided[0] == "line" else 0.0)
 
 
 def classify_contact(
