@@ -48,12 +48,16 @@ class Texture:
         High points of the contact: local maxima of the smoothed image inside the contact
         that rise clearly above their surroundings (the seed's first measure).
     mean_height : float
-        Their mean height above the baseline [image units] (the seed's second measure).
+        Their mean height above the baseline [image units] (the seed's second measure);
+        NaN (JSON null) without high points.
     maxima_density_per_m2 : float
         High points per unit contact area [1/m^2]; unlike the count, independent of the
         image size.
     dominant_wavelength_m : float or None
-        Wavelength of the strongest spatial frequency of the image's ripple [m].
+        Wavelength of the strongest spatial frequency of the image's ripple [m]. Over the
+        whole image, as the seed measures texture: on most images it is the scale of the
+        contact's own shape or of the array (a smooth face, a band, a texture's envelope),
+        and a texture's own scale shows in `band_energy` and `spectral_centroid_per_m`.
     spectral_centroid_per_m : float or None
         Power-weighted mean spatial frequency [cycles/m].
     band_energy : tuple of float
@@ -291,8 +295,10 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
 def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Texture:
     """Texture measures of a prepared image (internal core of `texture_measures`)."""
     if not prepared.present:
-        return Texture(0, 0.0, 0.0, None, None, (0.0,) * OCTAVES, 0.0)
+        return Texture(0, math.nan, 0.0, None, None, (0.0,) * OCTAVES, 0.0)
     n_maxima, mean_height = high_points(prepared, sigma=sigma)
+    if not n_maxima:
+        mean_height = math.nan  # no high points: no mean height (0 would read as one)
     area = float(contact_area(prepared)) * prepared.taxel_area
     density = n_maxima / area
     window = contact_window(prepared)
