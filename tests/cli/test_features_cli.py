@@ -379,12 +379,13 @@ def test_calibrated_refuses_raw_codes(tmp_path, capsys, washer, suffix):
         "--calibration CAL.npz` makes one)\n"
     )
     # the same numbers as pressure [Pa]: 200 Pa on the washer's 1488 taxels (93.0 mm^2),
-    # 18.6 mN, and the 24 Pa of the ring of taxels that the smoothing adds to the contact
+    # 18.6 mN, and 24 Pa on the 800 taxels around them that the smoothing adds to the
+    # contact and its 2-taxel catchment adds to its force (0.0186 + 24 x 800 x 6.25e-8 N)
     np.save(tmp_path / "pressure.npy", washer.astype(float))
     assert main([*args[:1], str(tmp_path / "pressure.npy"), *args[2:]]) == 0
     contact = json.loads(capsys.readouterr().out)["contact"]
     assert np.count_nonzero(washer == 200) * 200 * 2.5e-4**2 == pytest.approx(0.0186)
-    assert contact["total_force_n"] == pytest.approx(0.018984, rel=1e-5)
+    assert contact["total_force_n"] == pytest.approx(0.0186 + 24 * 800 * 2.5e-4**2, rel=1e-5)
 
 
 def test_reference_frame_tares_a_frame_at_rest(tmp_path, capsys):

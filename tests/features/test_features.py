@@ -168,6 +168,43 @@ def test_contact_measures_of_a_rectangle():
     assert not region.touches_border
 
 
+def test_a_calibrated_image_s_force_counts_the_load_around_its_contact():
+    # a smooth load: its tail lies below the contact's threshold (the region's own taxels
+    # gave 5.16 of 5.65 N, -9 %), most of it within the catchment of 2 taxels the
+    # smoothing reaches without a cover (5.59 N, -1.2 %)
+    rows, cols = np.mgrid[:32, :32]
+    pressure = 1e5 * np.exp(-((rows - 15.3) ** 2 + (cols - 16.1) ** 2) / 18.0)
+    force = find_contact(pressure, 1e-3, calibrated=True).total_force_n
+    assert force == pytest.approx(pressure.sum() * 1e-6, rel=0.02)  # 5.65 N
+    # two loads: each region takes the taxels nearer to it, none counted twice; the
+    # lighter one's threshold, set by the other's contrast, cuts more of its tail (2.73 N)
+    rows, cols = np.mgrid[:32, :48]
+
+    def load(column):
+        return 1e5 * np.exp(-((rows - 15.3) ** 2 + (cols - column) ** 2) / 18.0)
+
+    contact = find_contact(load(12.1) + 0.5 * load(35.9), 1e-3, calibrated=True)
+    big, small = contact.regions
+    assert big.total_force_n == pytest.approx(5.65, rel=0.02)
+    assert small.total_force_n == pytest.approx(2.83, rel=0.04)
+    assert contact.total_force_n == pytest.approx(big.total_force_n + small.total_force_n)
+
+
+def test_a_calibrated_frame_s_force_is_the_press_s():
+    # a sensor's calibrated frame is the pressure felt at the cover's depth, spread beyond
+    # the contact: its catchment reaches 3.5 depths (14 taxels on vhdta128); the contact's
+    # own taxels gave 1.76 N of a 2 N press
+    from taxel.mechanics import make_indenter
+    from taxel.sensor import calibrate
+
+    for name in ("vhdta128", "resistive16"):
+        sensor = make_sensor(name)
+        frame = sensor.press(make_indenter("sphere"), normal_force=2.0, rng=1)
+        felt = calibrate(sensor, rng=11).felt_pressure(frame.raw)
+        force = extract(felt, sensor, calibrated=True).contact.total_force_n
+        assert force == pytest.approx(2.0, rel=0.02), name
+
+
 def test_several_regions_sorted_by_size():
     image = np.zeros((32, 32))
     image[2:6, 2:6] = 1.0

@@ -13,7 +13,19 @@ from taxel.features._moments import binary_moments
 from taxel.features._record import record
 from taxel.features._window import contact_box, contact_window
 
-__all__ = ["Contact", "ContactRegion", "contact_regions", "find_contact", "region_moments"]
+__all__ = [
+    "Contact",
+    "ContactRegion",
+    "catchment_reach",
+    "contact_regions",
+    "felt_forces",
+    "find_contact",
+    "region_moments",
+]
+
+# a contact's load is felt this many cover depths around it (2 % of a point load's beyond)
+_TAIL_DEPTHS = 3.5
+_HALO_TAXELS = 2  # ... and at least this far: the smoothing's reach
 
 
 @record
@@ -32,7 +44,9 @@ class ContactRegion:
     area_m2 : float
         Contact area [m^2].
     total_force_n : float or None
-        Sum of pressure times taxel area [N] when the image is calibrated, else None.
+        When the image is calibrated, the pressure times taxel area summed over the
+        region and the taxels around it that the cover spreads its load into [N] (see
+        `find_contact`); else None.
     major_axis_m, minor_axis_m : float
         Full axis lengths of the ellipse with the region's second moments [m]
         (``4 sqrt(lambda)``, as for a uniform ellipse).
@@ -68,7 +82,7 @@ class Contact:
     area_m2 : float
         Total contact area [m^2].
     total_force_n : float or None
-        Total force [N] when the image is calibrated.
+        Total force [N] when the image is calibrated: the regions' forces together.
     major_axis_m, minor_axis_m, orientation_rad : float
         Principal axes of all contact taxels together (see `ContactRegion`).
     regions : tuple of ContactRegion
@@ -167,7 +181,7 @@ def _one_region(prepared: Prepared) -> Contact:
     )
     force = None
     if prepared.calibrated:
-        force = float(cv2.sumElems(image * mask)[0]) * prepared.taxel_area
+        force = float(felt_forces(prepared)[0])
     rows, cols = mask.shape
     row_pitch, col_pitch = prepared.pitch
     centroid_m = ((col - (cols - 1) / 2) * col_pitch, (row - (rows - 1) / 2) * row_pitch)
@@ -202,6 +216,41 @@ def contact_regions(prepared: Prepared) -> Contact:
     return _several_regions(prepared)
 
 
+def catchment_reach(prepared: Prepared) -> int:
+    """How far [taxels] around a contact its load is felt: 3.5 cover depths, at least 2.
+
+    A point load's stress at depth d spreads as Boussinesq's sigma_z, of which the part
+    beyond a radius R is (1 + R^2 / d^2)^(-3/2): 2 % at R = 3.5 d. Without a cover (a bare
+    pitch, a pressure map) the smoothing's reach, 2 taxels.
+    """
+    depths = _TAIL_DEPTHS * prepared.cover_depth / prepared.mean_pitch
+    return max(_HALO_TAXELS, math.ceil(depths - 1e-9))
+
+
+def felt_forces(prepared: Prepared) -> np.ndarray:
+    """Force [N] of each region of a calibrated image, its load's tails included.
+
+    Each region takes the taxels within `catchment_reach` of it (chessboard distance)
+    that are nearer to it than to another region, grown a taxel at a time: the contact's
+    own taxels miss the load the cover spreads around them (a 2 N sphere on vhdta128's
+    calibrated frame reads 1.76 N over its contact, 1.99 N with its catchment).
+    """
+    reach = catchment_reach(prepared)
+    image = prepared.image
+    square = np.ones((3, 3), np.uint8)
+    if prepared.n_regions == 1:
+        grown = cv2.dilate(prepared.mask, np.ones((2 * reach + 1,) * 2, np.uint8))
+        return np.array([float(cv2.sumElems(image * grown)[0]) * prepared.taxel_area])
+    # labels grown a ring at a time into the unlabelled taxels: nearest region first
+    labels = prepared.labels.astype(np.float32)  # (exact for any label cv2 can number)
+    for _ in range(reach):
+        grown = cv2.dilate(labels, square)
+        labels = np.where(labels > 0, labels, grown)
+    keys = labels.astype(np.int64).ravel()
+    sums = np.bincount(keys, weights=image.ravel(), minlength=prepared.n_regions + 1)
+    return sums[1:] * prepared.taxel_area
+
+
 def _region_sums(labels: np.ndarray, size: int, terms: np.ndarray) -> np.ndarray:
     """Sums of each row of `terms` (k, n) per label 1 .. size - 1, shape (k, size - 1).
 
@@ -218,7 +267,7 @@ def _label_terms(prepared: Prepared) -> tuple[np.ndarray, np.ndarray, np.ndarray
     """The contact taxels' labels, values (float64) and the terms summed per region.
 
     The terms' rows: 1, row, col, row^2, col^2, row col, the signal above the baseline (w),
-    w row, w col, and the values when the image is calibrated.
+    w row, w col.
     """
     labels = prepared.labels
     # the contact taxels in raster order, as np.nonzero(labels) gives them (its search of
@@ -226,7 +275,7 @@ def _label_terms(prepared: Prepared) -> tuple[np.ndarray, np.ndarray, np.ndarray
     flat = np.flatnonzero(prepared.mask.view(bool))
     rows, cols = np.divmod(flat, labels.shape[1])
     values = prepared.image.ravel().take(flat).astype(np.float64)
-    terms = np.empty((10 if prepared.calibrated else 9, rows.size))
+    terms = np.empty((9, rows.size))
     terms[0] = 1.0
     rows_f, cols_f, weight = terms[1], terms[2], terms[6]
     rows_f[:], cols_f[:] = rows, cols
@@ -236,8 +285,6 @@ def _label_terms(prepared: Prepared) -> tuple[np.ndarray, np.ndarray, np.ndarray
     weight[:] = np.maximum(prepared.smooth.ravel().take(flat) - prepared.baseline, 0.0)
     np.multiply(weight, rows_f, out=terms[7])
     np.multiply(weight, cols_f, out=terms[8])
-    if prepared.calibrated:
-        terms[9] = values
     return labels.ravel().take(flat), values, terms
 
 
@@ -269,7 +316,7 @@ def _several_regions(prepared: Prepared) -> Contact:
     border[np.concatenate((labels[0], labels[-1], labels[:, 0], labels[:, -1]))] = True
     forces: list[float | None] = [None] * size
     if prepared.calibrated:
-        region_forces = sums[9, :-1] * prepared.taxel_area
+        region_forces = felt_forces(prepared)
         forces = [*region_forces.tolist(), float(region_forces.sum())]
     half_r, half_c = (labels.shape[0] - 1) / 2, (labels.shape[1] - 1) / 2
     row_pitch, col_pitch = prepared.pitch
@@ -335,6 +382,11 @@ def find_contact(
     set (8-neighbours) above a low threshold that holds at least one taxel above a high
     threshold. Both thresholds are the larger of a multiple of the noise sigma and a
     fraction of the contrast (see `taxel.features.prepare`).
+
+    A calibrated image's force is summed over each region and its catchment: the taxels
+    within 3.5 cover depths of it (at least 2 taxels; `catchment_reach`) nearer to it than
+    to another region, since the cover spreads a load beyond the contact the image shows
+    (`felt_forces`).
 
     Examples
     --------
