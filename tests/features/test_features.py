@@ -205,6 +205,29 @@ def test_a_calibrated_frame_s_force_is_the_press_s():
         assert force == pytest.approx(2.0, rel=0.02), name
 
 
+def test_a_plate_pressing_the_whole_array_is_a_contact_once_its_rest_is_known():
+    # no taxel at rest: the smoothed minimum is no baseline (resistive16 under 20 kPa read
+    # "no contact" calibrated or tared, or half the array); a calibrated or tared image's
+    # no-load level is 0
+    from taxel.sensor import calibrate
+
+    sensor = make_sensor("resistive16")
+    plate = sensor.frame_from_pressure(np.full(sensor.load_grid.shape, 20e3), rng=1).raw
+    rest = np.zeros(sensor.load_grid.shape)
+    reference = np.mean([sensor.frame_from_pressure(rest, rng=k).raw for k in range(8)], 0)
+    tared = extract(plate, sensor, reference=reference)
+    felt = calibrate(sensor, rng=11).felt_pressure(plate)
+    calibrated = extract(felt, sensor, calibrated=True)
+    for features in (tared, calibrated):
+        assert features.contact_type == "surface"
+        assert features.contact.area_m2 == pytest.approx(32e-3**2)  # every taxel
+    # 20 kPa over 32 x 32 mm, less what the pad's free rim does not pass on
+    assert calibrated.contact.total_force_n == pytest.approx(20.48, rel=0.05)
+    # a frame at rest stays blank
+    at_rest = sensor.frame_from_pressure(rest, rng=9).raw
+    assert not extract(at_rest, sensor, reference=reference).contact.present
+
+
 def test_several_regions_sorted_by_size():
     image = np.zeros((32, 32))
     image[2:6, 2:6] = 1.0

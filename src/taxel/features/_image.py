@@ -58,6 +58,9 @@ __all__ = ["Preparation", "Prepared", "prepare"]
 K_LOW = 8.0
 # Seeds must stand ~6-7 sigma above the background mean; a blank noisy image has none.
 K_HIGH = 11.0
+# ... so where a calibrated or tared image has no background (the whole array pressed), its
+# baseline is this many sigma below its known no-load level, 0
+_REST_SIGMAS = 3.5
 # The extent of a contact is taken where it rises above 12 % of the contrast. Lower would
 # follow the cover's blur tail; higher would cut the centre of a flat punch, whose
 # pressure there is only ~1/6 of its (singular, discretised) rim peak.
@@ -358,7 +361,10 @@ def prepare(
         Sigma of the Gaussian smoothing [taxels], 0 to disable.
     baseline : float, optional
         The no-contact level [image units]; by default the minimum of the smoothed image,
-        which fails only when the whole sensor is in contact (pass 0 for pressure maps).
+        which fails when the whole sensor is in contact. So a calibrated or tared
+        (`reference`) image, whose no-load level is 0, whose smoothed minimum stands
+        clearly above 0 (11 noise sigmas: no taxel at rest) takes 3.5 sigmas below 0, the
+        background minimum's usual place. A raw frame cannot tell: give a `reference`.
     defects : bool, optional
         Remove bright defects narrower than 3 taxels (glass scratches, hot pixels) with a
         3 x 3 grey-level opening. By default only in an uncalibrated image (a raw frame)
@@ -428,6 +434,10 @@ def prepare(
     noise = raw_noise * smoothing_gain(smoothing)
     lowest, peak, _, peak_at = cv2.minMaxLoc(smooth)
     level = lowest if baseline is None else check_finite("baseline", baseline)
+    if baseline is None and (calibrated or reference is not None) and lowest > K_HIGH * noise:
+        # no taxel at rest: the whole array is pressed. A pressure's or a tared frame's
+        # no-load level is known, 0, and its background's minimum would lie ~3.5 sigma below
+        level = -_REST_SIGMAS * noise
     if inverted and baseline is not None:
         level = -level
     if abs(level) > _LARGEST_VALUE:
