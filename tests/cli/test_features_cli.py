@@ -379,13 +379,14 @@ def test_calibrated_refuses_raw_codes(tmp_path, capsys, washer, suffix):
         "--calibration CAL.npz` makes one)\n"
     )
     # the same numbers as pressure [Pa]: 200 Pa on the washer's 1488 taxels (93.0 mm^2),
-    # 18.6 mN, and 24 Pa on the 800 taxels around them that the smoothing adds to the
-    # contact and its 2-taxel catchment adds to its force (0.0186 + 24 x 800 x 6.25e-8 N)
+    # 18.6 mN, and 24 Pa on the other 2608: as pressure, a load on every taxel (none is at
+    # a pressure map's no-load level, 0), the whole array's contact
     np.save(tmp_path / "pressure.npy", washer.astype(float))
     assert main([*args[:1], str(tmp_path / "pressure.npy"), *args[2:]]) == 0
     contact = json.loads(capsys.readouterr().out)["contact"]
     assert np.count_nonzero(washer == 200) * 200 * 2.5e-4**2 == pytest.approx(0.0186)
-    assert contact["total_force_n"] == pytest.approx(0.0186 + 24 * 800 * 2.5e-4**2, rel=1e-5)
+    assert contact["total_force_n"] == pytest.approx(0.0186 + 24 * 2608 * 2.5e-4**2, rel=1e-5)
+    assert contact["area_m2"] == pytest.approx(64 * 64 * 2.5e-4**2)
 
 
 def test_reference_frame_tares_a_frame_at_rest(tmp_path, capsys):
@@ -472,3 +473,30 @@ def test_table_names_its_axes_and_shows_directions_alike(tmp_path, capsys):
     assert rows["centroid (row, col) [taxels]"] == "(15.50, 15.50)"
     assert abs(float(rows["orientation [deg]"])) < 1.0
     assert abs(float(rows["line angle [deg]"])) < 1.0
+
+
+def test_a_raw_frame_pressed_all_over_is_warned_of(tmp_path, capsys):
+    # a plate over the whole array, or a frame saturated everywhere: no taxel at rest, so
+    # the smoothed minimum is no baseline and a raw frame reads "no contact" by itself
+    from taxel.sensor import make_sensor
+
+    sensor = make_sensor("resistive16")
+    grid = sensor.load_grid.shape
+    np.save(tmp_path / "plate.npy", sensor.frame_from_pressure(np.full(grid, 20e3), rng=1).raw)
+    np.save(tmp_path / "rest.npy", sensor.frame_from_pressure(np.zeros(grid), rng=2).raw)
+    args = ["features", str(tmp_path / "plate.npy"), "--sensor", "resistive16"]
+    assert main(args) == 0
+    captured = capsys.readouterr()
+    assert "contact                        no" in captured.out
+    assert captured.err.startswith(
+        f"taxel features: warning: no contact found, but {tmp_path / 'plate.npy'} reads "
+    )
+    assert "give --reference REST.npy, a frame of the sensor at rest\n" in captured.err
+    # with the frame at rest as its reference, the whole array is the contact
+    assert main([*args, "--reference", str(tmp_path / "rest.npy"), "--json"]) == 0
+    captured = capsys.readouterr()
+    assert captured.err == ""
+    assert json.loads(captured.out)["contact"]["area_m2"] == pytest.approx(32e-3**2)
+    # a frame at rest is not warned of
+    assert main(["features", str(tmp_path / "rest.npy"), "--sensor", "resistive16"]) == 0
+    assert capsys.readouterr().err == ""

@@ -336,6 +336,39 @@ def _warn_if_defects_erased(
         )
 
 
+def _warn_if_pressed_all_over(
+    arguments: argparse.Namespace, features: Any, image: np.ndarray, sensor: Any
+) -> None:
+    """Warn when a raw frame shows no contact but reads far from its sensor's rest all over.
+
+    Its baseline, the smoothed minimum, lies under a load that covers the whole array (a
+    plate, a frame saturated everywhere), which a raw frame alone cannot tell from rest.
+    """
+    if features.contact.present or arguments.calibrated or arguments.reference is not None:
+        return
+    if not hasattr(sensor, "frame_from_pressure"):
+        return
+    from taxel.features import sensor_noise
+
+    # noise-free frames at rest and under a plate at full scale: the median of a frame
+    # moves by 1.25 sigma / sqrt(taxels) with its noise, and a real unit's level at rest
+    # may stand a few per cent of full scale from the model's
+    grid = sensor.load_grid.shape
+    rest = float(np.median(sensor.frame_from_pressure(np.zeros(grid)).raw))
+    full = float(np.median(sensor.frame_from_pressure(np.full(grid, sensor.full_scale)).raw))
+    shift = float(np.median(image)) - rest
+    spread = 10.0 * sensor_noise(sensor) / math.sqrt(image.size)
+    if abs(shift) <= max(spread, 0.05 * abs(full - rest)):
+        return
+    sys.stderr.write(
+        f"taxel features: warning: no contact found, but {arguments.file} reads "
+        f"{abs(shift):.4g} {'above' if shift > 0 else 'below'} the level of "
+        f"{arguments.sensor} at rest over the whole array: it may be pressed all over (a "
+        "plate, or a frame saturated everywhere), which a raw frame cannot show by itself; "
+        "give --reference REST.npy, a frame of the sensor at rest\n"
+    )
+
+
 def _run(arguments: argparse.Namespace) -> int:
     from taxel.features import extract
     from taxel.io import read_frame
@@ -400,6 +433,7 @@ def _run(arguments: argparse.Namespace) -> int:
     except ValueError as error:  # ("`image` must be at least 3x3 taxels"): the file is named
         raise ValueError(str(error).replace("`image`", f"{arguments.file}: the image")) from None
     _warn_if_defects_erased(arguments, features, given, pitch, preparation)
+    _warn_if_pressed_all_over(arguments, features, image, pitch)
     if arguments.figure:  # first: a figure that cannot be written stops before any output
         from taxel.viz import plot_features
 
