@@ -110,6 +110,37 @@ def test_contact_type_invariant_under_rotation_and_translation(expected, pattern
     assert classify_contact(image, PITCH).contact_type == expected
 
 
+@pytest.mark.parametrize(("expected", "pattern", "parameters"), CASES)
+def test_contact_type_invariant_under_the_array_s_rotations_and_mirror(
+    expected, pattern, parameters
+):
+    # every type, turned by 90, 180 and 270 degrees and mirrored: the array's own
+    # symmetries, which move every taxel onto another exactly
+    image = render(pattern, ftir=True, noise=0.04, scratches=3, rng=5, **parameters)
+    for turned in (np.rot90(image, 1), np.rot90(image, 2), np.rot90(image, 3), image.T):
+        assert classify_contact(np.ascontiguousarray(turned), PITCH).contact_type == expected
+
+
+@pytest.mark.parametrize("angle", [0.3, 1.2, 2.0, 2.9])
+def test_arc_type_invariant_under_rotation(angle):
+    # the rim's circle, of 60 taxels' radius, turned about the array's centre
+    centre = (60.0 * np.sin(angle), -60.0 * np.cos(angle))
+    image = render(arc, ftir=True, noise=0.03, rng=int(angle * 10), centre=centre)
+    assert classify_contact(image, PITCH).contact_type == "arc"
+
+
+@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize(
+    ("expected", "pattern", "extra"),
+    [("point", cone, {}), ("surface", sphere, {"radius": 14.0}), ("surface", washer, {}),
+     ("surface", flat_punch, {})],
+)  # fmt: skip
+def test_point_and_surface_types_invariant_under_translation(expected, pattern, extra, seed):
+    centre = tuple(np.random.default_rng(seed).uniform(-30, 30, size=2))
+    image = render(pattern, ftir=True, noise=0.03, rng=seed, centre=centre, **extra)
+    assert classify_contact(image, PITCH).contact_type == expected
+
+
 @pytest.mark.parametrize("shift", [(-30.0, 20.0), (0.0, 0.0), (25.0, -15.0)])
 def test_point_type_and_centroid_under_translation(shift):
     image = render(cone, noise=0.01, rng=2, centre=shift)
