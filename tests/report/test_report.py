@@ -108,3 +108,16 @@ def test_report_renders_in_headless_chromium(demo, tmp_path):
         check=True,
     )
     assert shot.stat().st_size > 20_000  # a rendered page, not a blank one
+
+
+@pytest.mark.parametrize("seed", [1985, 1, 2])
+def test_the_seed_s_texture_experiment_holds_on_other_draws(seed):
+    # Ellis's table: the rasp has the most maxima; screen and rasp stand higher on average
+    # than the foam (15 / 11.27, 13 / 15.62, 31 / 15.19)
+    from taxel.report._passive import texture_table
+
+    experiment = texture_table(DemoContext(seed=seed))
+    assert [verdict.passed for verdict in experiment.verdicts] == [True, True, True]
+    rows = {row[0]: (int(row[1]), float(row[2])) for row in experiment.tables[0].rows}
+    assert rows["rasp"][0] > max(rows["foam"][0], rows["screen"][0])
+    assert min(rows["rasp"][1], rows["screen"][1]) > 2 * rows["foam"][1]
