@@ -633,10 +633,9 @@ def _seed_texture(quick: bool) -> str:
         "|---|---|",
         *(f"| {claim} | {n} of {len(draws)} |" for claim, n in zip(claims, held, strict=True)),
         "",
-        "Our rasp (teeth every 3 mm over the whole array) has far more maxima than the "
-        "seed's 31, and our screen stands higher: the simulated surfaces are the library's, "
-        "not the seed's samples, and the seed does not give its forces; the orderings are "
-        "what its table reports.",
+        "The simulated surfaces are the library's, not the seed's samples, and the seed "
+        "does not give its forces, so the counts and heights are not its own; its "
+        "orderings are what the findings above check.",
     ]
     return "\n".join(lines)
 
