@@ -13,6 +13,7 @@ import numpy as np
 
 from taxel.cli._arguments import positive, positive_in, preset
 from taxel.cli._files import reading, writing
+from taxel.cli._pose_file import POSE_FORMATS, load_pose
 
 __all__ = ["register"]
 
@@ -21,131 +22,6 @@ __all__ = ["register"]
 _LARGEST_VALUE = 1e15
 # the table shows larger numbers (a pose's translation, say) in exponent notation
 _LARGEST_FIXED = 1e9
-
-
-def _load_pose(path: Path) -> np.ndarray:
-    """The --pose file's 4x4 pose; any problem with it is a ValueError naming --pose."""
-    try:
-        return _read_pose(path)
-    except RecursionError:
-        raise ValueError(f"--pose {path}: nested too deeply to be a pose") from None
-    except (ValueError, TypeError, KeyError, OSError) as error:
-        message = error.strerror if isinstance(error, OSError) and error.strerror else error
-        raise ValueError(f"--pose {path}: {message}") from None
-
-
-def _is_number(value: Any) -> bool:
-    return isinstance(value, int | float) and not isinstance(value, bool)
-
-
-def _shown(value: Any) -> str:
-    """A JSON value as an error shows it, cut to 40 characters."""
-    text = json.dumps(value)
-    return text if len(text) <= 40 else text[:37] + "..."
-
-
-def _numbers(data: dict[str, Any], key: str, length: int) -> list[float]:
-    """``data[key]``, a list of `length` numbers, or a ValueError naming the key."""
-    value = data[key]
-    if not (isinstance(value, list) and len(value) == length and all(map(_is_number, value))):
-        raise ValueError(f"{key!r} must be a list of {length} numbers, got {_shown(value)}")
-    return value
-
-
-# the accepted layouts of a --pose file, for its help and its errors
-_POSE_FORMATS = (
-    "a 4x4 list, {'matrix': 4x4}, or {'translation': [x, y, z]} with at most one of "
-    "'rotation': 3x3, 'quaternion': [x, y, z, w], 'rotvec': [rx, ry, rz]"
-)
-_ROTATION_KEYS = ("rotation", "quaternion", "rotvec")
-
-
-def _rotation_matrix(data: dict[str, Any]) -> list[list[float]]:
-    """``data["rotation"]``, a 3x3 list of numbers, or a ValueError naming the key."""
-    value = data["rotation"]
-    if not (isinstance(value, list) and len(value) == 3 and all(
-        isinstance(row, list) and len(row) == 3 and all(map(_is_number, row)) for row in value
-    )):  # fmt: skip
-        raise ValueError(f"'rotation' must be a 3x3 list of numbers (rows), got {_shown(value)}")
-    return value
-
-
-def _unit_quaternion(data: dict[str, Any]) -> list[float]:
-    """``data["quaternion"]`` scaled to unit length, or a ValueError naming the key.
-
-    ``math.hypot`` neither overflows nor underflows where SciPy's norm would (1e300, 1e-300).
-    """
-    quaternion = _numbers(data, "quaternion", 4)
-    norm = math.hypot(*quaternion)
-    if norm == 0.0:
-        raise ValueError("'quaternion' [0, 0, 0, 0] is no rotation: its length must not be 0")
-    return [component / norm for component in quaternion]
-
-
-def _rotation_vector(data: dict[str, Any]) -> list[float]:
-    """``data["rotvec"]`` (axis times angle [rad]), or a ValueError naming the key.
-
-    Refused when a double cannot hold its angle to a microradian (from 2**33, 8.6e9 rad).
-    """
-    vector = _numbers(data, "rotvec", 3)
-    angle = math.hypot(*vector)
-    if math.ulp(angle) > 1e-6:
-        raise ValueError(
-            f"'rotvec' has length {angle:.3g}: its length is the angle in rad, which a "
-            "double cannot hold to 1 urad beyond about 8.6e9 rad"
-        )
-    return vector
-
-
-def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
-    """A JSON object as a dict, refusing a key given twice (JSON keeps the last silently)."""
-    data: dict[str, Any] = {}
-    for key, value in pairs:
-        if key in data:
-            raise ValueError(f"key {key!r} given twice")
-        data[key] = value
-    return data
-
-
-def _read_pose(path: Path) -> np.ndarray:
-    """A 4x4 pose from JSON in one of the `_POSE_FORMATS`; any other key is refused."""
-    from taxel.frames import as_pose, make_pose
-
-    try:
-        data = json.loads(path.read_text(), object_pairs_hook=_unique_keys)
-    except json.JSONDecodeError as error:
-        raise ValueError(f"not valid JSON ({error.msg})") from None
-    if isinstance(data, list):
-        return as_pose(data, name="pose")
-    if not isinstance(data, dict):
-        raise ValueError(f"a pose is {_POSE_FORMATS}")
-    if "matrix" in data:
-        others = sorted(key for key in data if key != "matrix")
-        if others:
-            raise ValueError(
-                f"'matrix' is the whole pose (its last column the translation), "
-                f"so {others[0]!r} cannot go beside it"
-            )
-        return as_pose(data["matrix"], name="pose")
-    unknown = sorted(key for key in data if key not in ("translation", *_ROTATION_KEYS))
-    if unknown:
-        raise ValueError(f"unknown key {unknown[0]!r}: a pose is {_POSE_FORMATS}")
-    if "translation" not in data:
-        raise ValueError(f"no 'translation': a pose is {_POSE_FORMATS}")
-    given = [key for key in _ROTATION_KEYS if key in data]
-    if len(given) > 1:
-        raise ValueError(f"give one rotation: {given[0]!r} or {given[1]!r}, not both")
-    rotation: Any = None
-    if given == ["rotation"]:
-        rotation = _rotation_matrix(data)
-    elif given:
-        from scipy.spatial.transform import Rotation
-
-        if given == ["quaternion"]:
-            rotation = Rotation.from_quat(_unit_quaternion(data))  # (x, y, z, w)
-        else:
-            rotation = Rotation.from_rotvec(_rotation_vector(data))
-    return make_pose(rotation, _numbers(data, "translation", 3))
 
 
 def _format(value: Any, scale: float = 1.0, digits: int = 3) -> str:
@@ -411,7 +287,7 @@ def _run(arguments: argparse.Namespace) -> int:
             f"{arguments.sensor} frames are {shape[0]} x {shape[1]}; for a map on another "
             "grid, give its pitch with --pitch"
         )
-    pose = None if arguments.pose is None else _load_pose(Path(arguments.pose))
+    pose = None if arguments.pose is None else load_pose(Path(arguments.pose))
     reference = None if arguments.reference is None else _load_reference(arguments, image.shape)
     integers = np.issubdtype(stored.dtype, np.integer)  # (their noise is read in code steps)
     given = stored if integers else image
@@ -473,7 +349,7 @@ def register(commands: Any) -> None:
         "--pose",
         metavar="POSE.json",
         help="sensor pose T_BS in the base frame [m]: a JSON file holding "
-        + _POSE_FORMATS
+        + POSE_FORMATS
         + " (a 3x3 list of rows; the quaternion scalar-last; the rotation vector in "
         "radians); no other key",
     )
