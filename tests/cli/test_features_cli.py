@@ -1,4 +1,5 @@
 import json
+import math
 
 import cv2
 import numpy as np
@@ -500,3 +501,24 @@ def test_a_raw_frame_pressed_all_over_is_warned_of(tmp_path, capsys):
     # a frame at rest is not warned of
     assert main(["features", str(tmp_path / "rest.npy"), "--sensor", "resistive16"]) == 0
     assert capsys.readouterr().err == ""
+
+
+def test_a_depth_map_gives_the_contact_plane_s_normal(tmp_path, capsys):
+    # an optical sensor's indentation map: a face tilted 10 degrees about x
+    pitch = 2.5e-4
+    y, x = (np.mgrid[:64, :64] - 31.5) * pitch
+    tilt = math.radians(10)
+    np.save(tmp_path / "depth.npy", 2e-4 + math.tan(tilt) * y)
+    np.save(tmp_path / "image.npy", np.where(np.hypot(x, y) < 6e-3, 1.0, 0.0))
+    args = ["features", str(tmp_path / "image.npy"), "--pitch", str(pitch), "--json"]
+    assert main(args) == 0
+    assert json.loads(capsys.readouterr().out)["normal"] is None  # no depth, no normal
+    assert main([*args, "--depth", str(tmp_path / "depth.npy")]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["tilt_rad"] == pytest.approx(tilt, abs=1e-6)
+    assert data["normal"][1] == pytest.approx(math.sin(tilt), abs=1e-6)
+    # a depth map of another shape is one line naming the flag
+    np.save(tmp_path / "small.npy", np.zeros((8, 8)))
+    assert main([*args, "--depth", str(tmp_path / "small.npy")]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and f"--depth {tmp_path / 'small.npy'}: a 8 x 8 frame" in error

@@ -166,30 +166,30 @@ def _write_figure(path: Path, figure: Any) -> None:
         write_files([(path, lambda temporary: figure.savefig(temporary, dpi=120, format="png"))])
 
 
-def _load_reference(arguments: argparse.Namespace, shape: tuple[int, ...]) -> np.ndarray:
-    """--reference: the unloaded frame (finite, as `read_frame` checks), of the image's shape."""
+def _load_map(
+    arguments: argparse.Namespace, flag: str, path: str, shape: tuple[int, ...]
+) -> np.ndarray:
+    """A --reference frame or --depth map: finite (as `read_frame` checks), FILE's shape."""
     from taxel.io import read_frame
 
-    with reading("--reference", arguments.reference):
+    with reading(flag, path):
         try:
-            reference = read_frame(arguments.reference, as_stored=True)
-        except ValueError as error:  # (--key chooses FILE's array, not the reference's)
-            message = str(error).replace(
-                "; choose one with `key`", "; give a --reference of one frame"
-            )
-            raise ValueError(f"--reference: {message}") from None
-    largest = float(np.abs(reference).max())
+            values = read_frame(path, as_stored=True)
+        except ValueError as error:  # (--key chooses FILE's array, not this one's)
+            message = str(error).replace("; choose one with `key`", f"; give a {flag} of one")
+            raise ValueError(f"{flag}: {message}") from None
+    largest = float(np.abs(values).max())
     if largest > _LARGEST_VALUE:
         raise ValueError(
-            f"--reference {arguments.reference}: values up to {largest:.3g}, beyond the "
+            f"{flag} {path}: values up to {largest:.3g}, beyond the "
             f"{_LARGEST_VALUE:.0e} the features handle (they compute in single precision)"
         )
-    if reference.shape != shape:
+    if values.shape != shape:
         raise ValueError(
-            f"--reference {arguments.reference}: a {' x '.join(map(str, reference.shape))} "
+            f"{flag} {path}: a {' x '.join(map(str, values.shape))} "
             f"frame, but {arguments.file} is {shape[0]} x {shape[1]}"
         )
-    return reference
+    return values
 
 
 def _warn_if_defects_erased(
@@ -260,7 +260,9 @@ def _run(arguments: argparse.Namespace) -> int:
             suffix=".png",
             overwrite=arguments.overwrite,
             name="--figure",
-            inputs=tuple(path for path in (arguments.file, arguments.reference) if path),
+            inputs=tuple(
+                path for path in (arguments.file, arguments.reference, arguments.depth) if path
+            ),
         )
     try:
         stored = read_frame(arguments.file, key=arguments.key, as_stored=True)
@@ -288,7 +290,12 @@ def _run(arguments: argparse.Namespace) -> int:
             "grid, give its pitch with --pitch"
         )
     pose = None if arguments.pose is None else load_pose(Path(arguments.pose))
-    reference = None if arguments.reference is None else _load_reference(arguments, image.shape)
+    reference = None
+    if arguments.reference is not None:
+        reference = _load_map(arguments, "--reference", arguments.reference, image.shape)
+    depth = None
+    if arguments.depth is not None:
+        depth = _load_map(arguments, "--depth", arguments.depth, image.shape).astype(float)
     integers = np.issubdtype(stored.dtype, np.integer)  # (their noise is read in code steps)
     given = stored if integers else image
     preparation = {
@@ -305,7 +312,7 @@ def _run(arguments: argparse.Namespace) -> int:
             "stress is about half a fringe, not where it is highest: press lighter\n"
         )
     try:
-        features = extract(given, pitch, pose=pose, **preparation)
+        features = extract(given, pitch, pose=pose, depth=depth, **preparation)
     except ValueError as error:  # ("`image` must be at least 3x3 taxels"): the file is named
         raise ValueError(str(error).replace("`image`", f"{arguments.file}: the image")) from None
     _warn_if_defects_erased(arguments, features, given, pitch, preparation)
@@ -387,6 +394,13 @@ def register(commands: Any) -> None:
         help="the sensor's unloaded frame (or the mean of several), subtracted first: it "
         "removes the fixed pattern no contact makes (an FTIR glass's scratches, each taxel's "
         "offset), so that a frame at rest reads as no contact",
+    )
+    parser.add_argument(
+        "--depth",
+        metavar="FILE",
+        help="the cover's indentation at each taxel [m], positive into the cover, from a "
+        "sensor that measures displacement or depth (an optical one): it gives the contact "
+        "plane's normal (JSON 'normal', 'tilt_rad') and the contact's depth",
     )
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
     parser.add_argument("--figure", metavar="PNG", help="also draw the features to this file")
