@@ -418,7 +418,7 @@ def measure_edge_radius(
         The true radius of the simulated edge [m] (the procedure never sees it).
     table : EdgeRadiusTable or path, optional
         The table; None builds the default one for this sensor (`build_edge_radius_table`,
-        about half a minute, then kept for the session).
+        a few seconds, then kept for the session).
     sensor : str or TactileSensor, default "vhdta128"
         The sensor on the finger (must be the table's).
     position : tuple of float, default (0, 0)
