@@ -361,10 +361,11 @@ def prepare(
         Sigma of the Gaussian smoothing [taxels], 0 to disable.
     baseline : float, optional
         The no-contact level [image units]; by default the minimum of the smoothed image,
-        which fails when the whole sensor is in contact. So a calibrated or tared
-        (`reference`) image, whose no-load level is 0, whose smoothed minimum stands
-        clearly above 0 (11 noise sigmas: no taxel at rest) takes 3.5 sigmas below 0, the
-        background minimum's usual place. A raw frame cannot tell: give a `reference`.
+        which fails when the whole sensor is in contact. A calibrated or tared
+        (`reference`) image has a known no-load level, 0: when its smoothed minimum stands
+        clearly above it (11 noise sigmas: no taxel at rest), the baseline is 3.5 sigmas
+        below 0, where a background's minimum usually lies. A raw frame cannot tell: give
+        it a `reference`.
     defects : bool, optional
         Remove bright defects narrower than 3 taxels (glass scratches, hot pixels) with a
         3 x 3 grey-level opening. By default only in an uncalibrated image (a raw frame)
