@@ -457,8 +457,9 @@ def stiffness(arguments: argparse.Namespace) -> int:
         "height: " + " / ".join(f"{h * 1e3:.2f}" for h in result.heights) + " mm",
         "contact area: " + " -> ".join(f"{a:.0f}" for a in result.area_pixels) + " pixels",
     ]
-    seed = _SEED.get(name) if arguments.sensor == "vhdta128" else None
-    if seed is not None:  # the seed's sensor: its numbers beside ours
+    seed_press = arguments.sensor == "vhdta128" and tuple(arguments.forces) == (12.0, 39.0)
+    seed = _SEED.get(name) if seed_press else None
+    if seed is not None:  # the seed's sensor and forces: its numbers beside ours
         lines.append(
             f"the seed (Ellis 2.2, its 128 x 128 sensor): height {seed[0]} mm unloaded / at "
             f"12 N / at 39 N, area {seed[1]} pixels at 12 N -> 39 N; here unloaded "
