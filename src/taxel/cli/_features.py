@@ -176,8 +176,8 @@ def _load_map(
         try:
             values = read_frame(path, as_stored=True)
         except ValueError as error:  # (--key chooses FILE's array, not this one's)
-            what = "frame" if flag == "--reference" else "map"
-            message = str(error).replace("; choose one with `key`", f"; give a {flag} of one {what}")
+            what = f"{flag} of one {'frame' if flag == '--reference' else 'map'}"
+            message = str(error).replace("; choose one with `key`", f"; give a {what}")
             raise ValueError(f"{flag}: {message}") from None
     largest = float(np.abs(values).max())
     if largest > _LARGEST_VALUE:
