@@ -195,6 +195,17 @@ def make_ball(
     >>> round(acrylic.top * 1e3, 2)
     12.5
     """
+    return _ball_on_table(name, radius, material, position, support_radius=radius)
+
+
+def _ball_on_table(
+    name: str,
+    radius: float,
+    material: ElasticMaterial | None,
+    position: tuple[float, float],
+    **support: Any,
+) -> ProfileObject:
+    """A ball resting on the table at (x, y) [m]: `support` says how it gives way there."""
     pose = np.eye(4)
     pose[:2, 3] = check_pair("position", position)
     return ProfileObject(
@@ -203,7 +214,7 @@ def make_ball(
         material=material,
         profile=Sphere(radius),
         top=2 * radius,
-        support_radius=radius,
+        **support,
     )
 
 
@@ -233,16 +244,7 @@ def make_hollow_ball(
     """
     check_instance("material", material, ElasticMaterial)
     shell = HollowSphere(radius, thickness, material, gauge_pressure=gauge_pressure, sealed=sealed)
-    pose = np.eye(4)
-    pose[:2, 3] = check_pair("position", position)
-    return ProfileObject(
-        name=name,
-        pose=pose,
-        material=material,
-        profile=Sphere(radius),
-        top=2 * shell.radius,
-        shell=shell,
-    )
+    return _ball_on_table(name, shell.radius, material, position, shell=shell)
 
 
 def _rounded_box_distance(points: np.ndarray, half: np.ndarray, radius: float) -> np.ndarray:
