@@ -42,7 +42,8 @@ def bound_message(
     ends = [(end, why) for end, why in zip((high, low), _WHY[rule], strict=True)]
     parts = []
     for (end, why), name in zip(ends, ("largest", "smallest"), strict=True):
-        count = int(np.count_nonzero(np.isclose(chosen, end, rtol=1e-9)))
+        # (np.isclose, the same test, costs ~20 us a call: a tenth of a frame's solve)
+        count = int(np.count_nonzero(np.abs(chosen - end) <= 1e-8 + 1e-9 * abs(end)))
         if count:
             frames = "" if at_bound.size == 1 else f" in {count} of {at_bound.size} frames"
             parts.append(f"lambda held at the {name} of its range, {end:.3g}{frames}, as {why}")
