@@ -109,8 +109,10 @@ def test_stiffness_tells_the_racquet_ball_from_the_acrylic_sphere(capsys, small_
     assert out.startswith("racquet ball touched at 0.5 N, then pressed at 12 N and 39 N on ")
     assert "verdict: deformable" in out
     assert "inf" not in out  # a pad whose compression did not grow is said so, not "inf N/m"
-    assert "the seed (Ellis 2.2, its 128 x 128 sensor): height 57 / 53 / 47 mm" in out
-    assert "area 674 -> 4681 pixels at 12 N -> 39 N" in out
+    seed = "the seed (Ellis 2.2, its 128 x 128 sensor): height unloaded / at 12 / 39 N 57 / 53"
+    assert seed in out
+    assert "contact area at 12 / 39 N 674 / 4681 pixels" in out
+    assert "contact area at 0.5 / 12 / 39 N: " in out
     assert main(["active", "stiffness", "--object", "acrylic sphere", "--calibration", pad]) == 0
     assert "verdict: rigid" in capsys.readouterr().out
 
@@ -121,7 +123,7 @@ def test_stiffness_on_the_four_by_four_array(capsys, tmp_path):
     args = ["active", "stiffness", "--sensor", "capacitive4x4", "--forces", "2", "4"]
     assert main([*args, "--calibration", pad]) == 0
     captured = capsys.readouterr()
-    assert "verdict: deformable" in captured.out and "4 -> 4 -> 4 pixels" in captured.out
+    assert "verdict: deformable" in captured.out and "4 / 4 / 4 pixels" in captured.out
     assert captured.err == f"built the pad calibration and saved it to {pad}\n"
     assert main([*args, "--object", "steel ball", "--calibration", pad, "--json"]) == 0
     result = json.loads(capsys.readouterr().out)
@@ -299,7 +301,8 @@ def test_a_wrong_or_deeply_nested_file_names_its_flag(capsys, tmp_path, procedur
         ),
         (
             ["stiffness", "--size-mm", "20", "--poisson-ratio", "0.3"],
-            "--size-mm 20 --poisson-ratio 0.3 describes a custom object: give --shape ball",
+            "--size-mm 20 --poisson-ratio 0.3 describes a custom object: give --shape ball, "
+            "hollow-ball (with --wall-mm) or block",
         ),
         (["recognize", "--object", "nosuch"], "argument --object: must be one of washer, coin"),
         (["stiffness", "--object", "nosuch"], "argument --object: must be one of racquet ball"),

@@ -314,8 +314,8 @@ _CUSTOM_FLAGS = (
 # the seed's numbers (Ellis, section 2.2) beside a named object's: heights at no load, 12 N
 # and 39 N [mm]; imprint areas at 12 N and 39 N [pixels]
 _SEED = {
-    "racquet ball": ("57 / 53 / 47", "674 -> 4681"),
-    "acrylic sphere": ("12.5 / 12.5 / 12.5", "289 -> 487"),
+    "racquet ball": ("57 / 53 / 47", "674 / 4681"),
+    "acrylic sphere": ("12.5 / 12.5 / 12.5", "289 / 487"),
 }
 
 
@@ -340,8 +340,8 @@ def _deformation_object(arguments: argparse.Namespace) -> str:
             )
         if given:
             raise CommandLineError(
-                f"{' '.join(given)} describes a custom object: give --shape ball or --shape "
-                "block with --size-mm and --modulus-mpa"
+                f"{' '.join(given)} describes a custom object: give --shape ball, hollow-ball "
+                "(with --wall-mm) or block, with --size-mm and --modulus-mpa"
             )
         return str(arguments.object or _DEFAULT_OBJECT)
     if arguments.object is not None:
@@ -443,6 +443,7 @@ def stiffness(arguments: argparse.Namespace) -> int:
             thickness=None if arguments.wall_mm is None else arguments.wall_mm * 1e-3,
             gauge_pressure=0.0 if arguments.gauge_kpa is None else arguments.gauge_kpa * 1e3,
         )
+    pressed = " / ".join(f"{force:g}" for force in result.forces) + " N"
     lines = [
         f"{name} touched at {result.forces[0]:g} N, then pressed at "
         + " N and ".join(f"{force:g}" for force in result.forces[1:])
@@ -454,15 +455,17 @@ def stiffness(arguments: argparse.Namespace) -> int:
             if math.isfinite(result.pad_stiffness)
             else "the pad's compression did not grow between the presses: the load spread)"
         ),
-        "height: " + " / ".join(f"{h * 1e3:.2f}" for h in result.heights) + " mm",
-        "contact area: " + " -> ".join(f"{a:.0f}" for a in result.area_pixels) + " pixels",
+        f"height at {pressed}: " + " / ".join(f"{h * 1e3:.2f}" for h in result.heights) + " mm",
+        f"contact area at {pressed}: "
+        + " / ".join(f"{a:.0f}" for a in result.area_pixels)
+        + " pixels",
     ]
     seed_press = arguments.sensor == "vhdta128" and tuple(arguments.forces) == (12.0, 39.0)
     seed = _SEED.get(name) if seed_press else None
     if seed is not None:  # the seed's sensor and forces: its numbers beside ours
         lines.append(
-            f"the seed (Ellis 2.2, its 128 x 128 sensor): height {seed[0]} mm unloaded / at "
-            f"12 N / at 39 N, area {seed[1]} pixels at 12 N -> 39 N; here unloaded "
-            f"{result.unloaded_height * 1e3:.1f} mm"
+            f"the seed (Ellis 2.2, its 128 x 128 sensor): height unloaded / at 12 / 39 N "
+            f"{seed[0]} mm (here {result.unloaded_height * 1e3:.1f} mm unloaded); contact area "
+            f"at 12 / 39 N {seed[1]} pixels"
         )
     return _emit(arguments, result.to_dict(), lines, built)

@@ -86,6 +86,7 @@ def _table(data: dict[str, Any]) -> str:
     rows += [
         ("planarity", _format(data["planarity"], 1.0, 2)),
         ("normal", _format(data["normal"])),
+        ("tilt [deg]", _format(data["tilt_rad"], 180.0 / math.pi, 2)),
         ("texture maxima", str(texture["maxima_count"])),
         ("texture mean height", _format(texture["mean_height"], 1.0, 2)),
         ("texture wavelength [mm]", _format(texture["dominant_wavelength_m"], 1e3)),

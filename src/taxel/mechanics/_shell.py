@@ -155,8 +155,9 @@ class HollowSphere:
         largest = 0.5 * (self.radius - self.thickness)
         if self.force(largest) < force:
             raise ValueError(
-                f"`force` {force:g} N would flatten the hollow ball past half its inner radius "
-                f"({largest * 1e3:.3g} mm at each pole), beyond this shell model"
+                f"a press of {force:g} N would flatten the hollow ball past half its inner "
+                f"radius ({largest * 1e3:.3g} mm at each pole): its wall is too soft or thin for "
+                "this shell model"
             )
         return float(brentq(lambda delta: self.force(delta) - force, 0.0, largest, xtol=1e-15))
 
