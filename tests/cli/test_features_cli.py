@@ -490,9 +490,20 @@ def test_a_raw_frame_pressed_all_over_is_warned_of(tmp_path, capsys):
     captured = capsys.readouterr()
     assert "contact                        no" in captured.out
     assert captured.err.startswith(
-        f"taxel features: warning: no contact found, but {tmp_path / 'plate.npy'} reads "
+        "taxel features: warning: no contact found, but even the least pressed taxels of "
+        f"{tmp_path / 'plate.npy'} read 9% of full scale above resistive16 at rest: "
     )
     assert "give --reference REST.npy, a frame of the sensor at rest\n" in captured.err
+    # pressed harder, the pad's free rim reads less than the middle: a contact is found,
+    # measured from a level under the load, and warned of too
+    harder = sensor.frame_from_pressure(np.full(grid, 120e3), rng=1).raw
+    np.save(tmp_path / "harder.npy", harder)
+    assert main(["features", str(tmp_path / "harder.npy"), "--sensor", "resistive16"]) == 0
+    captured = capsys.readouterr()
+    assert "contact                        yes" in captured.out
+    assert captured.err.startswith(
+        f"taxel features: warning: even the least pressed taxels of {tmp_path / 'harder.npy'}"
+    )
     # with the frame at rest as its reference, the whole array is the contact
     assert main([*args, "--reference", str(tmp_path / "rest.npy"), "--json"]) == 0
     captured = capsys.readouterr()

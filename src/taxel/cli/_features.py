@@ -217,33 +217,36 @@ def _warn_if_defects_erased(
 def _warn_if_pressed_all_over(
     arguments: argparse.Namespace, features: Any, image: np.ndarray, sensor: Any
 ) -> None:
-    """Warn when a raw frame shows no contact but reads far from its sensor's rest all over.
+    """Warn when even a raw frame's least pressed taxels read well above its sensor's rest.
 
-    Its baseline, the smoothed minimum, lies under a load that covers the whole array (a
-    plate, a frame saturated everywhere), which a raw frame alone cannot tell from rest.
+    The features' baseline is the smoothed minimum, which then lies under the load (a
+    plate over the whole array, a frame saturated everywhere): the contact found, or none,
+    is measured from the wrong level, and a raw frame alone cannot show it.
     """
-    if features.contact.present or arguments.calibrated or arguments.reference is not None:
+    if arguments.calibrated or arguments.reference is not None:
         return
     if not hasattr(sensor, "frame_from_pressure"):
         return
     from taxel.features import sensor_noise
 
-    # noise-free frames at rest and under a plate at full scale: the median of a frame
-    # moves by 1.25 sigma / sqrt(taxels) with its noise, and a real unit's level at rest
-    # may stand a few per cent of full scale from the model's
+    # noise-free frames at rest and under a plate at full scale; the least pressed taxels
+    # are the lowest readings, or the highest where the reading falls with pressure
     grid = sensor.load_grid.shape
-    rest = float(np.median(sensor.frame_from_pressure(np.zeros(grid)).raw))
-    full = float(np.median(sensor.frame_from_pressure(np.full(grid, sensor.full_scale)).raw))
-    shift = float(np.median(image)) - rest
-    spread = 10.0 * sensor_noise(sensor) / math.sqrt(image.size)
-    if abs(shift) <= max(spread, 0.05 * abs(full - rest)):
+    rest = sensor.frame_from_pressure(np.zeros(grid)).raw
+    full = sensor.frame_from_pressure(np.full(grid, sensor.full_scale)).raw
+    quantile = 98 if getattr(sensor, "reading_falls_with_pressure", False) else 2
+    least = float(np.percentile(image, quantile)) - float(np.percentile(rest, quantile))
+    span = float(np.median(full)) - float(np.median(rest))
+    # a real unit at rest may stand a few per cent of full scale from the model's
+    if not (least / span > 0.05 and abs(least) > 3.0 * sensor_noise(sensor)):
         return
+    found = "" if features.contact.present else "no contact found, but "
     sys.stderr.write(
-        f"taxel features: warning: no contact found, but {arguments.file} reads "
-        f"{abs(shift):.4g} {'above' if shift > 0 else 'below'} the level of "
-        f"{arguments.sensor} at rest over the whole array: it may be pressed all over (a "
-        "plate, or a frame saturated everywhere), which a raw frame cannot show by itself; "
-        "give --reference REST.npy, a frame of the sensor at rest\n"
+        f"taxel features: warning: {found}even the least pressed taxels of {arguments.file} "
+        f"read {least / span:.0%} of full scale above {arguments.sensor} at rest: it is "
+        "pressed all over (a plate, or a frame saturated everywhere), and the features "
+        "measure from a level under the load, which a raw frame cannot show by itself; give "
+        "--reference REST.npy, a frame of the sensor at rest\n"
     )
 
 
