@@ -44,7 +44,7 @@ def make_block(name: str, size: float, material: Any = None) -> ProfileObject:
 # regulation ball at 1.1 g/cm^3) sealed at ambient pressure, its modulus set by the seed's
 # 57 -> 53 mm at 12 N (`taxel.mechanics.HollowSphere`).
 DEFORMATION_OBJECTS: dict[str, tuple[str, float, float, float]] = {
-    "racquet ball": ("hollow ball", 28.5e-3, 3.62e6, 0.5),
+    "racquet ball": ("hollow ball", 28.5e-3, 3.64e6, 0.5),
     "acrylic sphere": ("ball", 6.25e-3, 3.2e9, 0.37),
     "steel ball": ("ball", 10e-3, 200e9, 0.3),
     "rubber ball": ("ball", 15e-3, 2e6, 0.49),
@@ -97,7 +97,7 @@ def make_deformation_object(
     --------
     >>> ball = make_deformation_object("racquet ball")
     >>> round(ball.top * 1e3, 1), ball.shell.thickness, ball.material.youngs_modulus
-    (57.0, 0.004, 3620000.0)
+    (57.0, 0.004, 3640000.0)
     """
     known = DEFORMATION_OBJECTS.get(name)
     if known is None and None in (shape, size, youngs_modulus):

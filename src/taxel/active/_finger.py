@@ -232,12 +232,18 @@ class SimulatedFinger:
             contact = self._solve(heights, item, flat, force, None, None)
             return contact.indentation + flat + item.support_travel(force) - depth
 
+        least = 1e-6 * self.max_force
+        if excess(least) >= 0.0:
+            raise ValueError(
+                f"`depth` {depth:g} m is less than the travel of the lightest press the finger "
+                f"makes ({least:g} N); the finger did not move"
+            )
         if excess(self.max_force) < 0.0:
             raise ValueError(
                 f"`depth` {depth:g} m needs more than the finger's limit {self.max_force:g} N; "
                 "the finger did not move"
             )
-        return float(brentq(excess, 1e-6 * self.max_force, self.max_force, rtol=1e-6))
+        return float(brentq(excess, least, self.max_force, rtol=1e-6))
 
     def _object_share(self, material: Any) -> float:
         """The object's share of the approach: its compliance over both bodies' (Hertz)."""

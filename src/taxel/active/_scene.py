@@ -238,7 +238,7 @@ def make_hollow_ball(
     Examples
     --------
     >>> from taxel.mechanics import ElasticMaterial
-    >>> ball = make_hollow_ball("racquet ball", 28.5e-3, 4e-3, ElasticMaterial(3.62e6, 0.5))
+    >>> ball = make_hollow_ball("racquet ball", 28.5e-3, 4e-3, ElasticMaterial(3.64e6, 0.5))
     >>> round((ball.flattening(12.0) + ball.support_travel(12.0)) * 1e3, 2)  # [mm]
     4.0
     """
