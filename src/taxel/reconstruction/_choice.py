@@ -271,18 +271,14 @@ class ParameterScan:
         self._last_meaningful = max(
             int(np.searchsorted(self.grid, largest, side="right")), self._first_meaningful + 3
         )
+        self._bin: np.ndarray | None = None  # each mode's bin (None: a bin per mode)
         if g.size <= _EXACT_LIMIT:
-            self._order = None
-            self._starts = None
             centres = g
-        else:  # bins of equal width in log g, over the modes sorted by g
-            self._order = np.argsort(g)
-            logs = np.log10(np.maximum(g[self._order], 1e-300))
-            bins = np.floor(logs * _BINS_PER_DECADE)
-            self._starts = np.flatnonzero(np.r_[True, bins[1:] != bins[:-1]])
-            counts = np.diff(np.r_[self._starts, g.size])
-            centres = np.add.reduceat(g[self._order], self._starts) / counts
-            self._counts = counts
+        else:  # bins of equal width in log g, numbered from the smallest g
+            logs = np.log10(np.maximum(g, 1e-300))
+            _, self._bin = np.unique(np.floor(logs * _BINS_PER_DECADE), return_inverse=True)
+            self._counts = np.bincount(self._bin)
+            centres = np.bincount(self._bin, g) / self._counts
         lam2 = self.grid[:, None] ** 2
         with np.errstate(divide="ignore", invalid="ignore"):
             if truncated:
@@ -293,14 +289,20 @@ class ParameterScan:
         self._residual_weight = (1 - f) ** 2
         self._seminorm_weight = f**2 * inverse_g
         self._derivative_weight = -(4 / self.grid[:, None]) * (1 - f) * f**2 * inverse_g
-        mode_count = self._counts if self._order is not None else np.ones(g.size)
+        mode_count = self._counts if self._bin is not None else np.ones(g.size)
         self.trace = (f * mode_count[None, :]).sum(axis=1) + n_free
 
     def _compress(self, beta2: np.ndarray) -> np.ndarray:
-        if self._order is None:
+        """Squared coefficients (B, n) summed in each mode's bin: (B, bins).
+
+        One `np.bincount` for the batch, frame j's bins shifted by j * bins (a gather of
+        the modes in order of g and `np.add.reduceat` cost 2.5x as much on one frame).
+        """
+        if self._bin is None:
             return beta2
-        assert self._starts is not None  # set together with _order
-        return np.add.reduceat(beta2[:, self._order], self._starts, axis=1)
+        count, bins = beta2.shape[0], self._counts.size
+        keys = self._bin if count == 1 else (self._bin + bins * np.arange(count)[:, None])
+        return np.bincount(keys.ravel(), beta2.ravel(), count * bins).reshape(count, bins)
 
     def curves(
         self, beta2: np.ndarray, rest: np.ndarray, *, lcurve: bool = True
