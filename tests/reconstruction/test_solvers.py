@@ -294,6 +294,33 @@ def test_each_rule_chooses_the_same_lambda_in_a_batch_as_frame_by_frame(rule):
     assert np.allclose(batch.regularization, single, rtol=1e-12)
 
 
+@pytest.mark.parametrize("rule", ["gcv", "discrepancy"])
+def test_a_binned_scan_chooses_the_same_lambda_in_a_batch_as_frame_by_frame(rule):
+    # 48 x 48 = 2304 modes: above 2048 the scan sums the coefficients in bins of g
+    spec = forward_model_preset("resistive16", shape=(48, 48))
+    solver = TikhonovSolver(spec, order=1, boundary="reflect", representation="fast")
+    rng = np.random.default_rng(9)
+    frames = solver.operator.apply(rng.random((3, *spec.shape)) * 1e4)
+    frames += rng.normal(0, 300, frames.shape)
+    batch = solver.solve(frames, regularization=rule)
+    single = [float(solver.solve(frame, regularization=rule).regularization) for frame in frames]
+    assert np.allclose(batch.regularization, single, rtol=1e-12)
+    assert np.allclose(batch.curve.gcv[1], solver.solve(frames[1], regularization=rule).curve.gcv)
+
+
+def test_a_given_lambda_solves_as_a_fresh_solver_does_after_other_lambdas():
+    # the filter factors of a given lambda are kept for the frames that follow
+    solver = TikhonovSolver(SMALL, order=1)
+    rng = np.random.default_rng(2)
+    frames = solver.operator.apply(rng.random((4, *SMALL.shape)) * 1e4)
+    for lam in (0.05, 0.2, 0.0, 0.2, 0.05):
+        kept = solver.solve(frames, regularization=lam)
+        fresh = TikhonovSolver(SMALL, order=1).solve(frames, regularization=lam)
+        assert np.array_equal(kept.pressure, fresh.pressure)
+        assert np.array_equal(kept.residual_norm, fresh.residual_norm)
+        assert np.array_equal(kept.solution_norm, fresh.solution_norm)
+
+
 @pytest.mark.parametrize("rule", ["gcv", "lcurve", "discrepancy", 0.05])
 def test_a_batch_solved_in_chunks_equals_the_whole(monkeypatch, rule):
     solver = TikhonovSolver(SMALL, order=1)

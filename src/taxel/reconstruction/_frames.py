@@ -36,14 +36,17 @@ def as_frames(frames: Any, spec: ForwardModelSpec) -> tuple[np.ndarray, tuple[in
     if array.size == 0:
         raise ValueError(f"`frame` must hold at least one frame, got shape {array.shape}")
     array = array.reshape(-1, *spec.shape)
+    if np.isfinite(array).all():  # (the usual frame: the dead taxels' mask is not needed)
+        if spec.dead_taxels:
+            array[:, ~spec.live_taxels] = 0.0
+        return array, batch
     live = spec.live_taxels
     bad = ~np.isfinite(array) & live
     if bad.any():
         raise ValueError(
             f"`frame` must be finite at live taxels, got {int(bad.sum())} NaN or inf value(s)"
         )
-    if spec.dead_taxels:
-        array[:, ~live] = 0.0
+    array[:, ~live] = 0.0
     return array, batch
 
 

@@ -29,6 +29,7 @@ _PCG_TOLERANCE = 1e-12
 _PCG_ITERATIONS = 200
 _NOISE_MODES = 4096
 _CHUNK_BYTES = 1 << 18  # readings per chunk of a batch (`_solve_spectral`)
+_GIVEN_KEPT = 16  # filter factors kept for this many given lambdas
 _CURVES_KEPT = 8  # batches of at most this many frames keep their L-curves (for plots)
 
 
@@ -119,11 +120,27 @@ class TikhonovSolver:
         least = min(spectrum.g.size // 2, _NOISE_MODES)
         self._noise_modes = np.sort(np.argsort(spectrum.g, kind="stable")[:least])
         self._noise_blocks = difference_blocks(self.spec.live_taxels)
+        self._given_factors: dict[float, np.ndarray] = {}  # (1, r) for a given lambda
 
     @property
     def method(self) -> str:
         """The method's name, "tsvd" or "tikhonov"."""
         return "tsvd" if self.truncated else "tikhonov"
+
+    def _factors_of(self, value: float) -> np.ndarray:
+        """f_i of one given lambda, (1, r), kept for the frames that follow.
+
+        A loop at a fixed lambda then does not compute them frame after frame, nor a batch
+        once per frame.
+        """
+        factors = self._given_factors.get(value)
+        if factors is None:
+            if len(self._given_factors) >= _GIVEN_KEPT:
+                self._given_factors.clear()
+            factors = self.filter_factors(np.array([value]))
+            factors.flags.writeable = False
+            self._given_factors[value] = factors
+        return factors
 
     def filter_factors(self, regularization: np.ndarray) -> np.ndarray:
         """f_i(lambda) for each frame's lambda (B,) -> (B, r)."""
@@ -299,7 +316,9 @@ class TikhonovSolver:
         curve, noise = None, None
         bound = np.zeros(frames.shape[0], dtype=bool)
         if rule == "given":
+            assert value is not None  # a given lambda has its value
             lam = np.full(frames.shape[0], value)
+            factors = self._factors_of(value)
         else:
             curve = self.scan.curves(beta**2, rest, lcurve=keep)
             if rule == "discrepancy":
@@ -309,7 +328,7 @@ class TikhonovSolver:
                     noise = np.broadcast_to(np.asarray(noise_level, dtype=float), beta.shape[:1])
                     noise = noise.copy()
             lam, bound = self.scan.choose(rule, curve, None if noise is None else tau * noise)
-        factors = self.filter_factors(lam)
+            factors = self.filter_factors(lam)
         filtered = factors * beta
         pressure = spectrum.synthesize(filtered, free, out)
         misfit = beta - filtered
