@@ -33,11 +33,16 @@ __all__ = ["combined_noise", "difference_blocks", "high_frequency_noise", "spect
 _CHI2_MEDIAN = 0.454936423119572
 # disjoint 2 x 2 blocks are used when there are at least this many (else overlapping ones)
 _DISJOINT_ENOUGH = 1024
+# rows of up to this many values are sorted for their median: quicker than partitioning
+# (1000 rows of 127: 0.28 against 0.35 ms; one row of 4096: 22 against 10 us)
+_SORTED_BELOW = 512
 
 
 def _median_of_squares(values: np.ndarray) -> np.ndarray:
     """Median of values^2 along the last axis (the upper one for an even count)."""
     middle = values.shape[-1] // 2
+    if values.shape[-1] <= _SORTED_BELOW:  # (the same value: a short row sorts quicker)
+        return np.sort(values**2, axis=-1)[..., middle]
     return np.partition(values**2, middle, axis=-1)[..., middle]
 
 
