@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import collections
 import math
-import os
 import statistics
 import sys
 import time
@@ -30,25 +29,14 @@ import synthetic  # noqa: E402
 
 import features_rest  # noqa: E402
 import features_scenes  # noqa: E402
+import features_speed  # noqa: E402
 from taxel.features import CONTACT_TYPES, extract, prepare  # noqa: E402
 
-PATTERNS = ["cone", "band", "arc", "washer", "corner", "plate_with_slot", "texture"]
+PATTERNS = features_speed.PATTERNS
 SEED = 2026  # the benchmark's fixed seed
 RECHECK_SEED = 2027  # a second draw, to show the rules were not fitted to the first
 SENSORS = ("vhdta128", "16x16")
 CLOCK = time.thread_time  # CPU time of this thread: what one core spends, whatever the load
-
-
-def _median_time(image: np.ndarray, pitch: float, repeats: int) -> tuple[float, float]:
-    """Median CPU time and median wall-clock time of `extract` on one image [s]."""
-    extract(image, pitch)  # warm caches
-    times, walls = [], []
-    for _ in range(repeats):
-        wall, start = time.perf_counter(), CLOCK()
-        extract(image, pitch)
-        times.append(CLOCK() - start)
-        walls.append(time.perf_counter() - wall)
-    return statistics.median(times), statistics.median(walls)
 
 
 def _calibration() -> float:
@@ -61,43 +49,6 @@ def _calibration() -> float:
             array + 1
         best = min(best, (CLOCK() - start) / 1000)
     return best
-
-
-def _speed(quick: bool) -> str:
-    repeats = 30 if quick else 300
-    lines = [
-        "| indenter | 128x128 FTIR 8-bit, CPU / wall [us] | 16x16 pressure, CPU / wall [us] |",
-        "|---|---|---|",
-    ]
-    big, small = [], []
-    load = os.getloadavg()[0]
-    for name in PATTERNS:
-        pattern = getattr(synthetic, name)
-        frame = synthetic.render(pattern, ftir=True, noise=0.03, scratches=3, rng=0)
-        grid = synthetic.render(pattern, (16, 16), noise=0.01, rng=0)
-        big.append(_median_time(frame, 3.3e-2 / 128, repeats))
-        small.append(_median_time(grid, 1.5e-3, repeats))
-        lines.append(
-            f"| {name} | {big[-1][0] * 1e6:.0f} / {big[-1][1] * 1e6:.0f} "
-            f"| {small[-1][0] * 1e6:.0f} / {small[-1][1] * 1e6:.0f} |"
-        )
-    medians = [
-        [statistics.median(t[i] for t in times) * 1e6 for i in (0, 1)] for times in (big, small)
-    ]
-    verdicts = [
-        "met" if median <= target else "not met"
-        for median, target in ((medians[0][0], 1000), (medians[1][0], 100))
-    ]
-    lines.append(
-        f"| **median** | **{medians[0][0]:.0f}** / {medians[0][1]:.0f} (target 1000 CPU: "
-        f"{verdicts[0]}) | **{medians[1][0]:.0f}** / {medians[1][1]:.0f} (target 100 CPU: "
-        f"{verdicts[1]}) |"
-    )
-    lines.append(
-        f"\nLoad average (1 minute) on the 2 cores: {load:.1f} before these timings, "
-        f"{os.getloadavg()[0]:.1f} after."
-    )
-    return "\n".join(lines)
 
 
 def _call_budget(unit: float) -> str:
@@ -578,27 +529,44 @@ def _accuracy(quick: bool, seed: int = SEED, details: bool = False) -> tuple[str
 
 def run(quick: bool = False, seed: int = SEED, details: bool = False) -> str:
     cv2.setNumThreads(1)
+    timings = features_speed.SpeedRounds(quick)
+
+    # a round of timings after each section (one in a quick run), so that they sample the
+    # machine at different moments (see `features_speed`)
+    def timing_round(last: bool = False) -> None:
+        if not quick or last:
+            timings.round()
+
     accuracy, frames = _accuracy(quick, seed, details)
+    timing_round()
     calibration = _calibration()
+    profile = _profile(10 if quick else 60)
+    timing_round()
+    budget = _call_budget(calibration)
+    simulated = _speed_simulated(frames, 5 if quick else 20)
+    timing_round()
+    rest = features_rest.section(quick, seed, evaluate)
+    timing_round()
+    texture = _seed_texture(quick)
+    timing_round(last=True)
     parts = [
         "## Features\n",
         "`taxel.features.extract`, full feature set, median CPU time (`time.thread_time`) "
-        f"and median wall-clock time of {30 if quick else 300} calls on one core (OpenCV "
-        "single-threaded, BLAS one thread), synthetic frames from "
-        "`tests/features/synthetic.py` given a bare pitch. CPU time is the figure to "
-        "compare, because the machine is shared (wall time also counts the waits for the "
-        f"core): on it a 16 x 16 float32 add takes {calibration * 1e6:.2f} us (about "
-        "0.3-0.5 us on a current desktop core), so these numbers are a few times what a "
-        "dedicated core gives.\n",
-        _speed(quick),
+        "on one core (OpenCV single-threaded, BLAS one thread), synthetic frames from "
+        "`tests/features/synthetic.py` given a bare pitch. CPU time, not wall time, because "
+        "the machine is shared (wall time also counts the waits for the core): on it a "
+        f"16 x 16 float32 add takes {calibration * 1e6:.2f} us (about 0.3-0.5 us on a "
+        "current desktop core), so these numbers are a few times what a dedicated core "
+        "gives.\n",
+        timings.table(),
         "",
-        _profile(10 if quick else 60),
+        profile,
         "",
-        _call_budget(calibration),
-        _speed_simulated(frames, 5 if quick else 20),
+        budget,
+        simulated,
         accuracy,
-        features_rest.section(quick, seed, evaluate),
-        _seed_texture(quick),
+        rest,
+        texture,
     ]
     return "\n".join(parts)
 

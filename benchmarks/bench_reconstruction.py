@@ -23,10 +23,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import reconstruction_contact as contact
 import reconstruction_shape
+import reconstruction_speed
 import reconstruction_superres
 from taxel.mechanics import make_indenter, solve_contact
 from taxel.reconstruction import (
-    SupportSolver,
     TikhonovSolver,
     forward_model_preset,
     forward_operator,
@@ -362,89 +362,17 @@ def boundary_cost(quick: bool) -> list[str]:
     return lines
 
 
-def _median_time(call, repeats: int) -> float:
-    """Median CPU time of this thread per call: what one core spends, whatever the load
-    (wall time on this shared machine swings by a third from run to run)."""
-    times = []
-    for _ in range(repeats):
-        started = time.thread_time()
-        call()
-        times.append(time.thread_time() - started)
-    return float(np.median(times))
-
-
-def _speed_row(case: str, seconds: float, target: float | None, unit: str) -> str:
-    """A row of the speed table: the time in `unit` ('ms' or 'us'), its target and verdict."""
-    scale = {"ms": 1e3, "us": 1e6}[unit]
-    if target is None:
-        return f"| {case} | {seconds * scale:.3g} {unit} | - | - |"
-    return (
-        f"| {case} | {seconds * scale:.3g} {unit} | {target * scale:g} {unit} | "
-        f"{_verdict(seconds <= target)} |"
-    )
-
-
-def _dct_reference() -> float:
-    """Median CPU time [s] of one 128 x 128 orthonormal DCT-II: the machine's speed now."""
-    from scipy.fft import dctn
-
-    image = np.random.default_rng(0).random((128, 128))
-    return _median_time(lambda: dctn(image, type=2, norm="ortho"), 2000)
-
-
-def speed(quick: bool) -> list[str]:
-    lines = [
-        "| case | median time | target | verdict |",
-        "|---|---|---|---|",
-    ]
-    repeats = 20 if quick else 200
-    spec = _spec("vhdta128", 1)
-    rng = np.random.default_rng(0)
-    frame = rng.normal(0, 4e3, spec.shape)
-    for order in (0, 1):
-        solver = TikhonovSolver(spec, order=order)
-        solver.solve(frame)
-        fixed = _median_time(lambda s=solver: s.solve(frame, regularization=0.05), repeats)
-        gcv = _median_time(lambda s=solver: s.solve(frame, regularization="gcv"), repeats)
-        default = _median_time(lambda s=solver: s.solve(frame), repeats)
-        name = f"vhdta128 128 x 128, Tikhonov order {order}"
-        lines.append(_speed_row(f"{name}, fixed lambda", fixed, 0.5e-3, "ms"))
-        lines.append(_speed_row(f"{name}, GCV", gcv, 1e-3, "ms"))
-        lines.append(
-            _speed_row(f"{name}, default rule (discrepancy, sigma estimated)", default, 1e-3, "ms")
-        )
-    for k in (1, 2):
-        spec = _spec("resistive16", k)
-        solver = TikhonovSolver(spec, order=1)
-        frames = rng.normal(0, 2e3, (1000, *spec.shape))
-        solver.solve(frames[:2])
-        batch_repeats = 3 if quick else 15
-        fixed = _median_time(
-            lambda s=solver, f=frames: s.solve(f, regularization=0.05), batch_repeats
-        )
-        gcv = _median_time(
-            lambda s=solver, f=frames: s.solve(f, regularization="gcv"), batch_repeats
-        )
-        default = _median_time(lambda s=solver, f=frames: s.solve(f), batch_repeats)
-        name = f"resistive16 16 x 16 -> {spec.load_shape[0]} x {spec.load_shape[1]}, batch of 1000"
-        for label, seconds in (("fixed lambda", fixed), ("GCV", gcv), ("default rule", default)):
-            lines.append(_speed_row(f"{name}, {label}, per frame", seconds / 1000, 20e-6, "us"))
-    # the support method on one contact frame (its cost grows with the support's cells)
-    for sensor in SENSORS:
-        spec = _spec(sensor)
-        truth = make_load("sphere", spec, np.random.default_rng(3))
-        frame = forward_operator(spec).apply(truth)
-        frame += rng.normal(0, 0.01 * spec.full_scale, frame.shape)
-        solver = SupportSolver(spec)
-        cells = int(solver.solve(frame).support.sum())
-        elapsed = _median_time(lambda s=solver, f=frame: s.solve(f), 5 if quick else 20)
-        case = f"{sensor}, support, one 2 N sphere frame ({cells} cells in the support)"
-        lines.append(_speed_row(case, elapsed, None, "ms"))
-    return lines
-
-
 def run(quick: bool = False) -> str:
+    timings = reconstruction_speed.SpeedRounds(make_load, quick)
+
+    # a round of timings after each section (one in a quick run), so that they sample the
+    # machine at different moments (see `reconstruction_speed`)
+    def timing_round(last: bool = False) -> None:
+        if not quick or last:
+            timings.round()
+
     rows, seconds = accuracy(quick)
+    timing_round()
     started = time.perf_counter()
     contact_rows = contact.contact_rows(
         SENSORS, LOADS, make_load, 2 if quick else 4, contacts=CONTACTS
@@ -459,16 +387,23 @@ def run(quick: bool = False) -> str:
         contacts=CONTACTS,
     )
     contact_seconds = time.perf_counter() - started
+    timing_round()
     started = time.perf_counter()
     simulated, simulated_noise = contact.simulated_rows(SENSORS, FORCES, 1 if quick else 3)
     simulated_seconds = time.perf_counter() - started
+    timing_round()
     started = time.perf_counter()
     resolution_lines, reached = resolution(quick)
     resolution_seconds = time.perf_counter() - started
+    timing_round()
     started = time.perf_counter()
     superres_lines, superres = reconstruction_superres.section(quick)
     shape_lines = reconstruction_shape.section(quick)
     extra_seconds = time.perf_counter() - started
+    timing_round()
+    started = time.perf_counter()
+    boundary_lines = boundary_cost(quick)
+    timing_round(last=True)
     lines = [
         "## Pressure reconstruction (`taxel.reconstruction`)",
         "",
@@ -596,7 +531,7 @@ def run(quick: bool = False) -> str:
         "true (zero-boundary) model, 1 % noise; Tikhonov order 1, GCV. Window: cells >= 10 % "
         "of the peak, grown by two depths.",
         "",
-        *boundary_cost(quick),
+        *boundary_lines,
         "",
         "### Super-resolution: the centroid of an edge",
         "",
@@ -621,12 +556,7 @@ def run(quick: bool = False) -> str:
         "",
         "### Speed (one core)",
         "",
-        "Median CPU time of the calling thread (numerical libraries held to one thread). "
-        "The machine is shared and its speed drifts by up to 2x over minutes: for scale, "
-        f"one bare 128 x 128 DCT-II (scipy.fft.dctn, a fixed-lambda solve makes two) took "
-        f"{_dct_reference() * 1e6:.0f} us of CPU just before these timings.",
-        "",
-        *speed(quick),
+        *timings.lines(),
         "",
         f"_Accuracy sweep: {seconds:.0f} s; force and centroid: {contact_seconds:.0f} s; "
         f"simulated frames: {simulated_seconds:.0f} s; "
