@@ -167,6 +167,9 @@ def test_bad_commands_leave_the_finger_retracted(calibration):
         measure_deformation("rubber ball", forces=(39.0, 12.0), calibration=calibration)
     with pytest.raises(ValueError, match="`name` must be one of racquet ball"):
         make_deformation_object("jelly")
+    # the racquet ball's 4 mm wall in a smaller ball: named by this function's `size`
+    with pytest.raises(ValueError, match=r"half the `size` 0.006 m .* 0.004 \('racquet ball'"):
+        make_deformation_object("racquet ball", size=6e-3)
     with pytest.raises(ValueError, match="must hold 3 forces"):
         Deformation(
             PadCalibration(

@@ -114,6 +114,34 @@ def test_a_hollow_ball_flattens_by_its_shell_at_both_poles():
         finger.press(depth=1e-9)  # it gave scipy's "f(a) and f(b) must have different signs"
 
 
+def test_position_control_of_a_hollow_ball_stays_within_its_model():
+    # vhdta128's finger gives up to 113 N, the racquet ball's shell model holds to 64 N:
+    # the force for a depth is sought below the smaller (it asked the shell for 113 N)
+    wall = ElasticMaterial(3.64e6, 0.5)
+    ball = make_hollow_ball("racquet ball", 28.5e-3, 4e-3, wall)
+    finger = SimulatedFinger(make_sensor("vhdta128"), [ball], make_pose(DOWN, [0, 0, 0.06]))
+    assert finger.max_force > ball.largest_force == ball.shell.largest_force
+    forced = finger.press(normal_force=12.0)
+    finger.retract()
+    gap = forced.travel - forced.frame.contact.indentation - 2 * ball.shell.deflection(12.0)
+    again = finger.press(depth=forced.travel - gap)
+    assert again.frame.contact.normal_force == pytest.approx(12.0, rel=1e-4)
+    finger.retract()
+    with pytest.raises(ValueError, match="'racquet ball' past what its model describes"):
+        finger.press(depth=40e-3)
+    # a ball softer than 1 N (the force the test of giving way used) under a light finger
+    soft = make_hollow_ball("soft ball", 20e-3, 1e-3, ElasticMaterial(1e6, 0.5))
+    assert soft.largest_force < 1.0
+    light = SimulatedFinger(
+        make_sensor("resistive16"), [soft], make_pose(DOWN, [0, 0, 0.045]), max_force=0.4
+    )
+    pressed = light.press(normal_force=0.3)
+    light.retract()
+    gap = pressed.travel - pressed.frame.contact.indentation - 2 * soft.shell.deflection(0.3)
+    again = light.press(depth=pressed.travel - gap)
+    assert again.frame.contact.normal_force == pytest.approx(0.3, rel=1e-4)
+
+
 def test_off_centre_contact_gives_a_torque(sensor):
     ball = make_ball("ball", 6.25e-3, position=(0.005, 0.0))
     finger = SimulatedFinger(sensor, [ball], make_pose(DOWN, [0.0, 0.0, 0.02]))

@@ -284,7 +284,11 @@ def test_a_wrong_or_deeply_nested_file_names_its_flag(capsys, tmp_path, procedur
                 "4",
                 "--wall-mm=2",
             ],
-            "--wall-mm and --gauge-kpa describe a hollow ball, not a --shape block",
+            "--wall-mm describes a hollow ball, not a --shape block",
+        ),
+        (
+            ["stiffness", "--shape=ball", "--size-mm=20", "--modulus-mpa=2", "--gauge-kpa=50"],
+            "--gauge-kpa describes a hollow ball, not a --shape ball",
         ),
         (
             ["stiffness", "--shape=hollow-ball", "--size-mm=10", "--modulus-mpa=4", "--wall-mm=6"],

@@ -122,6 +122,12 @@ def make_deformation_object(
     if wall is None:
         raise ValueError(f"`thickness` (the wall) must be given for a hollow ball {name!r}")
     wall = check_positive("thickness", wall)
+    if not wall < size / 2:  # (the shell would name its own `radius`, not `size`)
+        given = "" if thickness is not None else f" ({name!r}'s wall)"
+        raise ValueError(
+            f"`thickness` must be less than half the `size` {size:g} m (a hollow ball's "
+            f"radius), got {wall:g}{given}"
+        )
     return make_hollow_ball(name, size, wall, material, gauge_pressure=gauge_pressure)
 
 

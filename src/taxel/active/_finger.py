@@ -168,7 +168,7 @@ class SimulatedFinger:
                 pressure=np.where(solid, initial.pressure, 0.0),
                 contact=initial.contact & solid,
             )
-        if depth is not None and nearest.flattening(1.0) + nearest.support_travel(1.0) > 0.0:
+        if depth is not None and nearest.gives_way:
             # the object also gives way by its force (a hollow ball's shell, an elastic
             # ball on the table): find the force whose press travels `depth` past the touch
             normal_force, depth = self._force_for_depth(heights, nearest, depth), None
@@ -238,12 +238,20 @@ class SimulatedFinger:
                 f"`depth` {depth:g} m is less than the travel of the lightest press the finger "
                 f"makes ({least:g} N); the finger did not move"
             )
-        if excess(self.max_force) < 0.0:
+        # the most the finger gives, or the object's model describes (a hollow ball's)
+        most = min(self.max_force, item.largest_force)
+        if excess(most) < 0.0:
+            if most < self.max_force:
+                raise ValueError(
+                    f"`depth` {depth:g} m flattens {item.name!r} past what its model describes "
+                    f"(the most is {most:.3g} N, {excess(most) + depth:.3g} m of travel); the "
+                    "finger did not move"
+                )
             raise ValueError(
                 f"`depth` {depth:g} m needs more than the finger's limit {self.max_force:g} N; "
                 "the finger did not move"
             )
-        return float(brentq(excess, least, self.max_force, rtol=1e-6))
+        return float(brentq(excess, least, most, rtol=1e-6))
 
     def _object_share(self, material: Any) -> float:
         """The object's share of the approach: its compliance over both bodies' (Hertz)."""

@@ -13,6 +13,7 @@ Two kinds of object:
 
 from __future__ import annotations
 
+import math
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import Any
@@ -88,6 +89,16 @@ class SceneObject(ABC):
         object's deformation near the contact is the contact solver's, so it adds nothing.
         """
         return 0.0
+
+    @property
+    def gives_way(self) -> bool:
+        """Whether `flattening` or `support_travel` grow with the force (else both are 0)."""
+        return False
+
+    @property
+    def largest_force(self) -> float:
+        """The largest force [N] the object's model describes (inf: no limit of its own)."""
+        return math.inf
 
     @property
     def contact_material(self) -> ElasticMaterial | None:
@@ -169,6 +180,15 @@ class ProfileObject(SceneObject):
 
     def flattening(self, normal_force: float) -> float:
         return 0.0 if self.shell is None else self.shell.deflection(normal_force)
+
+    @property
+    def gives_way(self) -> bool:
+        elastic_ball = self.support_radius is not None and self.material is not None
+        return self.shell is not None or elastic_ball
+
+    @property
+    def largest_force(self) -> float:
+        return math.inf if self.shell is None else self.shell.largest_force
 
     @property
     def contact_material(self) -> ElasticMaterial | None:

@@ -357,9 +357,15 @@ def _deformation_object(arguments: argparse.Namespace) -> str:
     hollow = arguments.shape == "hollow-ball"
     if hollow and arguments.wall_mm is None:
         raise CommandLineError("--shape hollow-ball needs its --wall-mm (the wall's thickness)")
-    if not hollow and (arguments.wall_mm is not None or arguments.gauge_kpa is not None):
+    shell_flags = [
+        flag
+        for flag, value in (("--wall-mm", arguments.wall_mm), ("--gauge-kpa", arguments.gauge_kpa))
+        if value is not None
+    ]
+    if not hollow and shell_flags:
         raise CommandLineError(
-            f"--wall-mm and --gauge-kpa describe a hollow ball, not a --shape {arguments.shape}"
+            f"{' and '.join(shell_flags)} describe{'s' if len(shell_flags) == 1 else ''} a "
+            f"hollow ball, not a --shape {arguments.shape}"
         )
     if hollow and not arguments.wall_mm < arguments.size_mm / 2:
         raise CommandLineError(

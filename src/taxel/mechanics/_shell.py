@@ -148,6 +148,26 @@ class HollowSphere:
         air = self.air_pressure(delta) * math.pi * max(2.0 * inner * delta - delta * delta, 0.0)
         return self.bending_stiffness * delta + air
 
+    @property
+    def largest_deflection(self) -> float:
+        """The largest pole deflection [m] the model describes.
+
+        Two wall thicknesses (or half the inner radius), past which a shell snaps inside out.
+        """
+        return min(_MOST_THICKNESSES * self.thickness, 0.5 * (self.radius - self.thickness))
+
+    @property
+    def largest_force(self) -> float:
+        """The plate force [N] at `largest_deflection`: the most `deflection` takes.
+
+        Examples
+        --------
+        >>> ball = HollowSphere(28.5e-3, 4e-3, ElasticMaterial(3.64e6, 0.5))
+        >>> round(ball.largest_force, 1)  # the racquet ball at 8 mm a pole [N]
+        64.2
+        """
+        return self.force(self.largest_deflection)
+
     def deflection(self, force: float) -> float:
         """Pole deflection delta [m] under a plate force [N] (the inverse of `force`).
 
@@ -162,7 +182,7 @@ class HollowSphere:
         force = check_positive("force", force, allow_zero=True)
         if force == 0.0:
             return 0.0
-        largest = min(_MOST_THICKNESSES * self.thickness, 0.5 * (self.radius - self.thickness))
+        largest = self.largest_deflection
         if self.force(largest) < force:
             raise ValueError(
                 f"a press of {force:g} N would flatten the hollow ball by more than "
