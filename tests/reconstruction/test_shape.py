@@ -146,6 +146,22 @@ def test_linear_and_nonneg_methods_test_the_pressure_against_its_noise():
     assert np.array_equal(fraction.contact, kept > 0.05 * kept.max())
 
 
+@pytest.mark.parametrize(
+    ("method", "rule"),
+    [("tikhonov", "gcv"), ("tikhonov", "lcurve"), ("tikhonov", None), ("tsvd", None),
+     ("nonneg", None), ("tv", None)],
+)  # fmt: skip
+def test_a_clean_frame_does_not_light_up_the_array(method, rule):
+    # no noise to test against: the linear estimate's ringing and an iterative solve's
+    # leftovers set the threshold (they read 180-758 of 1024 cells for the sphere's 44)
+    _, truth, frame = _pressed("sphere", (0.0, 0.0))
+    options = {} if rule is None else {"regularization": rule}
+    for noisy in (frame, _noisy(frame, 1e-4, 0)):
+        shape = recover_shape(noisy, SPEC, method=method, **options)
+        assert shape.contact.sum() <= 1.25 * truth.contact.sum()
+        assert _iou(shape.contact, truth.contact) >= 0.8
+
+
 def test_the_threshold_is_kappa_times_the_noise_std():
     _, _, frame = _pressed("punch")
     noisy = _noisy(frame, 0.01, 0)

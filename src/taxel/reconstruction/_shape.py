@@ -12,7 +12,8 @@ contact
     The cells whose pressure is significant: non-zero in the non-negative fit restricted
     to a support (method "support", whose support is chosen against the noise, see
     `SupportSolver`), or above kappa times the pressure's own noise std (the other
-    methods), with the universal threshold kappa = sqrt(2 ln n) of n load cells. A fixed
+    methods), with the universal threshold kappa = sqrt(2 ln n) of n load cells, plus
+    the linear filter's ringing about a sharp contact (`recover_shape`). A fixed
     fraction of the peak is not a test of anything: a map regularized against the noise
     is blurred, the more so the larger the noise, and a 5 % threshold grows the contact
     with the blur (a 10 mm sphere at 1 N on 32 x 32 taxels of 0.5 mm, noise 1 % of a
@@ -73,8 +74,9 @@ class ShapeResult:
         The pressure solve behind it.
     threshold : numpy.ndarray or float
         The pressure above which a cell counted as in contact [Pa]: per cell (kappa times
-        the pressure's noise std), or one value for `contact_fraction` and for method
-        "support" (rounding only: its support is already tested against the noise).
+        the pressure's noise std, plus the estimate's ringing), or one value for
+        `contact_fraction` and for method "support" (what the solve leaves of a zero: its
+        support is already tested against the noise).
     """
 
     heights: np.ndarray = field(repr=False)
@@ -116,9 +118,10 @@ def recover_shape(
         (0, 1], instead of by significance (the rule before; it over-grows the contact
         with the noise, see the module docstring).
     significance : float, optional
-        kappa: a cell is in contact when its pressure exceeds kappa times its noise std;
-        default sqrt(2 ln n) for n load cells. Not used by method "support" (its support
-        is found with the same threshold) nor with `contact_fraction`.
+        kappa: a cell is in contact when its pressure exceeds kappa times its noise std
+        (plus the estimate's ringing, see Notes); default sqrt(2 ln n) for n load cells.
+        Not used by method "support" (its support is found with the same threshold) nor
+        with `contact_fraction`.
 
     Returns
     -------
@@ -136,10 +139,16 @@ def recover_shape(
     `taxel.mechanics.solve_contact`), so :math:`h = \delta - u` there; outside it only
     :math:`h > \delta - u` is known. The contact is the support of the pressure, decided
     by a significance test against the reading noise propagated to each cell,
-    :math:`p_i > \kappa \sigma \sqrt{\sum_k (f_k v_{ik} / s_k)^2}` (singular values s_k,
+    :math:`p_i > \kappa \sigma_i + b` with
+    :math:`\sigma_i = \sigma \sqrt{\sum_k (f_k v_{ik} / s_k)^2}` (singular values s_k,
     vectors v_k, filter factors f_k of the linear filter of the same order and lambda;
-    the universal threshold of D. L. Donoho and I. M. Johnstone, Biometrika 81, 1994);
-    for method "support" the cells its restricted non-negative fit leaves loaded.
+    the universal threshold of D. L. Donoho and I. M. Johnstone, Biometrika 81, 1994).
+    b is the filter's ringing about a sharp contact, which no noise level measures (a
+    clean frame has none): how far that linear estimate dips below
+    :math:`-\sqrt{2 \ln n}\,\sigma_i`, as far as it rises outside the contact. Values
+    below an iterative solve's last relative change times the peak are its leftovers,
+    not load. For method "support" the contact is the cells its restricted
+    non-negative fit leaves loaded.
 
     delta is the maximum of a least-squares quadratic in (x, y) over the contact cells
     within two cells of the largest u (at least 12 of them, else the largest u): exact for
@@ -197,17 +206,19 @@ def recover_shape(
         spec.load_shape, spec.load_pitch, spec.material, thickness=spec.thickness
     ).apply(pressure)
     peak = float(pressure.max())
+    # what the solve leaves of a zero: rounding, or an iterative solve's last relative
+    # change (total variation's ADMM leaves ~1e-5 of the peak over a clean frame's array)
+    numerical = max(_NUMERICAL_ZERO, float(result.residual)) * peak
     threshold: np.ndarray | float
     if peak <= 0:
         threshold = np.inf
     elif fraction is not None:
         threshold = fraction * peak
     elif result.support is not None:
-        threshold = _NUMERICAL_ZERO * peak
+        threshold = numerical
     else:
         threshold = np.maximum(
-            _significance_threshold(frame, spec, result, kappa, options),
-            _NUMERICAL_ZERO * peak,
+            _significance_threshold(frame, spec, result, kappa, options), numerical
         )
     contact = pressure > threshold
     indentation = _apex(displacement, contact) if contact.any() else 0.0
@@ -229,12 +240,13 @@ def _significance_threshold(
     kappa: float | None,
     options: dict[str, Any],
 ) -> np.ndarray:
-    """The contact threshold: kappa times each load cell's pressure noise std [Pa].
+    """The contact threshold [Pa]: kappa times each cell's noise std, plus the ringing.
 
     The std is that of the linear estimate behind `result`: the Tikhonov (or TSVD) filter
     of the result's order at its lambda; for total variation, whose mu has no linear
     counterpart, the order-1 filter at the lambda the discrepancy principle gives for the
-    same noise (the same data fit).
+    same noise (the same data fit). The ringing is that estimate's deepest dip below
+    -sqrt(2 ln n) std, which its noise alone almost never reaches.
     """
     layout = {key: options[key] for key in ("boundary", "representation") if key in options}
     truncated = result.method == "tsvd"
@@ -256,9 +268,15 @@ def _significance_threshold(
         lam = float(linear.solve(frame, noise_level=max(noise, 1e-300)).regularization)
     factors = linear.filter_factors(np.atleast_1d(lam))[0]
     std = noise * np.sqrt(linear.spectrum.cell_variance(factors))
-    if kappa is None:
-        kappa = float(np.sqrt(2 * np.log(spec.load_shape[0] * spec.load_shape[1])))
-    return np.asarray(kappa * std)
+    universal = float(np.sqrt(2 * np.log(spec.load_shape[0] * spec.load_shape[1])))
+    # ... plus the filter's own ringing about a sharp contact, which the noise does not
+    # measure (a clean frame has none): how far the linear estimate dips below what its
+    # noise explains, as far as it rises outside the contact
+    estimate = result.pressure
+    if result.method not in ("tikhonov", "tsvd"):  # (a constrained fit shows no dips)
+        estimate = linear.solve(frame, regularization=lam).pressure
+    ringing = max(float(np.max(-estimate - universal * std)), 0.0)
+    return np.asarray((universal if kappa is None else kappa) * std + ringing)
 
 
 def _apex(displacement: np.ndarray, contact: np.ndarray) -> float:
