@@ -61,6 +61,19 @@ CASES = [
 ]
 
 
+def test_straight_pieces_lying_across_the_line_through_them_are_no_edge():
+    # an ellipse along the array's diagonal, wider than the array across it: its rim is
+    # left at two opposite corners, two straight pieces each at right angles to the line
+    # joining them (their distances from it are as evenly spread as a band's sides)
+    n = 128
+    y, x = np.mgrid[:n, :n] - (n - 1) / 2
+    along, across = (x + y) / np.sqrt(2), (y - x) / np.sqrt(2)
+    semi = 0.9 * (n - 1) / 2 * np.sqrt(2)
+    image = ((along / semi) ** 2 + (across / (2 * semi)) ** 2 <= 1) * 1e4
+    shape = classify_contact(image, 1e-3, calibrated=True)
+    assert (shape.contact_type, shape.edge_score) == ("surface", 0.0)
+
+
 def test_public_namespace():
     assert "extract" in taxel.features.__all__
     for name in taxel.features.__all__:

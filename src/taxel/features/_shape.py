@@ -58,7 +58,13 @@ import numpy as np
 
 from taxel._validation import check_positive
 from taxel.features._contact import Contact, contact_regions
-from taxel.features._fitting import CircleFit, LineFit, centred, fit_line_and_circle
+from taxel.features._fitting import (
+    CircleFit,
+    LineFit,
+    centred,
+    fit_line_and_circle,
+    line_through,
+)
 from taxel.features._gaps import gaps_core
 from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._measures import (
@@ -134,6 +140,9 @@ _LOBES_TAXELS = 8.0
 # A free outline is called straight only over 8 taxels or more: on a shorter piece the
 # taxel grid hides a bow (the same resolution as for lobes).
 _STRAIGHT_TAXELS = 8.0
+# Pieces of one straight outline each run within 15 deg of the line through them all (the
+# angle under which a corner's arms still count as in line, `taxel.features._outline`).
+_ALONG_LINE = math.radians(15.0)
 # Corner: two straight arms meeting at an interior angle <= 150 deg (a straight line is 180).
 _CORNER_ANGLE = math.radians(150.0)
 
@@ -251,10 +260,17 @@ def _one_line(chains: Sequence[tuple[np.ndarray, np.ndarray]]) -> bool:
     """Whether the free outline's pieces lie along one straight line.
 
     They do where an edge's outline is interrupted (by a gap, or by a stretch near the
-    array's border).
+    array's border): each piece runs along the line through them all (the spread about
+    it alone, of the distances' sizes so that a band's two sides pass, would also pass
+    short pieces lying across it), and they lie close to it.
     """
     x = np.concatenate([chain[0] for chain in chains])
     y = np.concatenate([chain[1] for chain in chains])
+    angle = line_through(centred(x, y))[0]
+    for piece_x, piece_y in chains:
+        turn = abs(line_through(centred(piece_x, piece_y))[0] - angle)
+        if min(turn, math.pi - turn) > _ALONG_LINE:
+            return False
     spread, extent = line_spread(x, y)
     return spread <= tolerance(extent)
 
