@@ -719,6 +719,24 @@ def test_sensor_coordinates_checks_its_input():
         sensor_coordinates([1, 2, 3], [1, 2], (4, 4), 1e-3)
 
 
+def test_oblong_taxels_are_refused_where_the_measures_are_taken_in_taxels():
+    # on a (1, 2) mm pitch a round hole is an ellipse in taxels and a line's angle is
+    # stretched (30 deg read 49): the contact type and the holes refuse it, naming the
+    # pitch; the contact's centroid and area, and the slots, take any pitch
+    image = np.zeros((32, 32))
+    image[10:20, 8:24] = 1e4  # 10 x 32 mm, centred 1 mm below the array's centre
+    oblong = (1e-3, 2e-3)
+    for function in (extract, classify_contact, detect_holes):
+        with pytest.raises(ValueError, match=r"`sensor_or_pitch` must give square taxels"):
+            function(image, oblong, calibrated=True)
+    contact = find_contact(image, oblong, calibrated=True)
+    assert contact.centroid_m == pytest.approx((0.0, -1e-3), abs=1e-9)
+    assert contact.area_m2 == pytest.approx(160 * 2e-6)
+    assert not detect_slots(image, oblong, calibrated=True).present
+    # within 1 %: square enough (a 45 deg line turns by 0.3 deg at most)
+    assert extract(image, (1e-3, 1.005e-3), calibrated=True).contact_type == "surface"
+
+
 def test_bad_options():
     image = np.zeros((8, 8))
     with pytest.raises(ValueError, match="`pose` must have shape"):

@@ -245,7 +245,9 @@ def extract(
         array geometry; larger values mean more pressure.
     sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
         Taxel pitch [m], a (row, column) pair, or a sensor description (a
-        `taxel.sensor.TactileSensor`: its cover depth then decides `defects`).
+        `taxel.sensor.TactileSensor`: its cover depth then decides `defects`). The taxels
+        must be square to 1 %: the contact type and the holes are measured in taxels
+        (resample an image of oblong taxels first; `find_contact` takes any pitch).
     pose : array_like, shape (4, 4), optional
         ``T_BS``, the sensor frame in the robot's base frame (see `taxel.frames`).
     depth : array_like, shape (rows, cols), optional

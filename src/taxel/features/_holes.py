@@ -15,6 +15,7 @@ import numpy as np
 from taxel.features._fitting import CircleFit, taubin_circle
 from taxel.features._gaps import HoleReport, SlotReport, gaps_core
 from taxel.features._image import Preparation, Prepared, prepare
+from taxel.features._sensor import require_square_taxels
 from taxel.features._window import contact_hull
 
 __all__ = [
@@ -179,6 +180,7 @@ def detect_holes(
     (1, True, 5.0)
     """
     prepared = prepare(image, sensor_or_pitch, **preparation)
+    require_square_taxels(prepared.pitch, "the hole tests", prepared.hexagonal)
     holes, _, _ = gaps_core(prepared)
     contours = outline_contours(prepared)
     test = diameter_test(prepared, *outline_taxels(prepared, contours), contours=contours)

@@ -147,6 +147,9 @@ class Prepared:
     left_out : float
         Largest value of `smooth` out of the contact, or a bound it stays under: `low`
         when no region above `low` was left out of `mask` (+inf when not known).
+    hexagonal : bool
+        Whether `image` is a hexagonal array's frame resampled onto its rectangular grid
+        (its rows sqrt(3)/2 of its pitch apart).
     """
 
     image: np.ndarray
@@ -172,6 +175,7 @@ class Prepared:
     blur: float = 0.0
     cover_depth: float = 0.0
     left_out: float = math.inf
+    hexagonal: bool = False
 
     @property
     def present(self) -> bool:
@@ -453,7 +457,7 @@ def prepare(
         "calibrated": calibrated, "peak": peak, "defects_removed": cleaned,
         "residual": residual, "residual_step": step, "residual_quantum": quantum,
         "blur": cover_blur(sensor_or_pitch),
-        "cover_depth": cover_depth(sensor_or_pitch) or 0.0,
+        "cover_depth": cover_depth(sensor_or_pitch) or 0.0, "hexagonal": values is not given,
     }  # fmt: skip
     if contrast <= max(K_HIGH * noise, floor):
         empty = np.zeros(values.shape, np.uint8)

@@ -29,6 +29,7 @@ __all__ = [
     "hexagonal_resampled",
     "pitch_pair",
     "raw_falls_with_pressure",
+    "require_square_taxels",
     "sensor_coordinates",
     "sensor_noise",
 ]
@@ -39,6 +40,9 @@ _NOISE_CACHE: weakref.WeakKeyDictionary[Any, float] = weakref.WeakKeyDictionary(
 # 64 frames of a 4 x 4 array) and reads at most this many frames
 _NOISE_RESIDUALS = 4096
 _NOISE_FRAMES = 64
+# Row and column pitches this close count as square for the measures taken in taxels
+# (a 1 % stretch turns a 45 deg line by 0.3 deg)
+_SQUARE_WITHIN = 0.01
 
 
 def cover_depth(sensor_or_pitch: Any) -> float | None:
@@ -192,6 +196,27 @@ def pitch_pair(sensor_or_pitch: Any) -> tuple[float, float]:
                 f"`sensor_or_pitch` must be a taxel pitch in metres (1 nm to 1 m), got {number:g}"
             )
     return pair
+
+
+def require_square_taxels(pitch: tuple[float, float], what: str, hexagonal: bool) -> None:
+    """Raise unless the row and column pitch agree to 1 % (`what` needs square taxels).
+
+    The contact type, the line and circle fits and the hole tests measure the contact in
+    taxels (distances, outlines, circles) and convert with one pitch: on oblong taxels a
+    round hole is an ellipse and a line's angle is stretched. The contact's centroid,
+    area, axes and force, the slots, the plane and the texture take any pitch. A
+    `hexagonal` array's frame (resampled onto its rectangular grid, rows sqrt(3)/2 of
+    its pitch apart) is let through: its measures in taxels are 15 % short across the
+    rows, which turns a 45 deg line by up to 4 deg.
+    """
+    row, col = pitch
+    if not hexagonal and abs(row / col - 1.0) > _SQUARE_WITHIN:
+        raise ValueError(
+            f"`sensor_or_pitch` must give square taxels for {what} (row and column pitch "
+            f"within 1 %), got ({row:g}, {col:g}) m: resample the image to one pitch p "
+            f"first (e.g. cv2.resize(image, None, fx={col:g} / p, fy={row:g} / p)); "
+            "find_contact, detect_slots, contact_plane and texture_measures take any pitch"
+        )
 
 
 def check_image_shape(shape: tuple[int, ...], sensor_or_pitch: Any) -> None:

@@ -87,6 +87,7 @@ from taxel.features._outline import (
     two_arms,
 )
 from taxel.features._record import record
+from taxel.features._sensor import require_square_taxels
 from taxel.features._texture import high_points
 
 __all__ = ["CONTACT_TYPES", "ContactShape", "classify_contact", "is_textured", "shape_core"]
@@ -294,6 +295,7 @@ def shape_core(
     first called (a band's type does without). Only the
     measures a rule needs are computed; `size_m` and `lobes` are None when not measured.
     """
+    require_square_taxels(prepared.pitch, "the contact type", prepared.hexagonal)
     pitch = prepared.mean_pitch
     if not contact.present:
         return ContactShape(
