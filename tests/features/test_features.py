@@ -968,7 +968,7 @@ def test_size_and_lobes_are_none_when_not_measured():
 @pytest.mark.parametrize("sigma", [0.5, 1.0, 2.0, 3.3])
 def test_gaussian_blur_is_opencvs(shape, sigma):
     # the features' blur applies GaussianBlur's own kernel with a cached copy of it
-    from taxel.features._image import gaussian_blur
+    from taxel.features._blur import gaussian_blur
 
     image = np.random.default_rng(shape[0]).random(shape).astype(np.float32) * 255
     reach = 2 * math.ceil(3 * sigma) + 1

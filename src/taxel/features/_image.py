@@ -27,13 +27,13 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from functools import lru_cache
 from typing import Any, TypedDict, cast
 
 import cv2
 import numpy as np
 
 from taxel._validation import check_finite, check_flag, check_range
+from taxel.features._blur import gaussian_blur
 from taxel.features._noise import (
     RESIDUAL_QUANTUM,
     laplacian_residual,
@@ -289,26 +289,6 @@ def _check_size(array: np.ndarray, name: str) -> None:
             f"`{name}` values must lie within +-{_LARGEST_VALUE:.0e} (the features compute in "
             f"float32), got a value of magnitude {float(largest):.3g}"
         )
-
-
-@lru_cache(maxsize=16)
-def _gaussian_kernel(sigma: float) -> np.ndarray:
-    """The float32 Gaussian kernel of `gaussian_blur` (cached)."""
-    reach = 2 * math.ceil(3 * sigma) + 1  # 3 sigma each way: 99.7 % of the weight
-    kernel = cv2.getGaussianKernel(reach, sigma, cv2.CV_32F)
-    kernel.setflags(write=False)  # shared by every call
-    return kernel
-
-
-def gaussian_blur(image: np.ndarray, sigma: float) -> np.ndarray:
-    """``cv2.GaussianBlur`` of a float32 image over 3 sigma each way, mirrored at the edges.
-
-    The separable filter GaussianBlur builds and applies to a float32 image, with its
-    kernel made once per sigma instead of on every call (`tests/features/test_features.py`
-    checks that both give the same values).
-    """
-    kernel = _gaussian_kernel(sigma)
-    return cv2.sepFilter2D(image, -1, kernel, kernel, borderType=cv2.BORDER_REFLECT)
 
 
 def removes_defects(

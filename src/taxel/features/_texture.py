@@ -10,8 +10,9 @@ import cv2
 import numpy as np
 
 from taxel._validation import check_range
+from taxel.features._blur import gaussian_blur
 from taxel.features._fitting import mean32
-from taxel.features._image import Preparation, Prepared, gaussian_blur, prepare
+from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._noise import noise_from_residual
 from taxel.features._record import record
 from taxel.features._spectrum import OCTAVES, ripple_spectrum
