@@ -9,10 +9,12 @@ level because the sensor layer, which reads its calibration files, may not impor
 
 from __future__ import annotations
 
+import ast
 import math
 import zipfile
 import zlib
-from typing import IO
+from collections.abc import Callable
+from typing import IO, Any
 
 import numpy as np
 
@@ -41,9 +43,10 @@ def check_header(stream: IO[bytes], size: int) -> None:
     if start != NPY_MAGIC:
         raise ValueError("no NumPy header: a text or image file?")
     version = np.lib.format.read_magic(stream)
-    readers = {
+    readers: dict[tuple[int, int], Callable[[IO[bytes]], tuple[Any, bool, np.dtype]]] = {
         (1, 0): np.lib.format.read_array_header_1_0,
         (2, 0): np.lib.format.read_array_header_2_0,
+        (3, 0): _read_header_3_0,
     }
     if version in readers:
         shape, _, dtype = readers[version](stream)
@@ -55,6 +58,21 @@ def check_header(stream: IO[bytes], size: int) -> None:
                 f"({claimed} bytes), but {held} bytes follow"
             )
     stream.seek(0)
+
+
+def _read_header_3_0(stream: IO[bytes]) -> tuple[tuple[int, ...], bool, np.dtype]:
+    """(shape, fortran order, dtype) of a version 3.0 header: 2.0's, in UTF-8.
+
+    NumPy has no public reader of it (np.save writes it for non-Latin-1 field names).
+    """
+    length = int.from_bytes(stream.read(4), "little")
+    try:
+        header = ast.literal_eval(stream.read(length).decode("utf-8"))
+        shape = tuple(int(size) for size in header["shape"])
+        dtype = np.lib.format.descr_to_dtype(header["descr"])
+        return shape, bool(header["fortran_order"]), dtype
+    except (SyntaxError, ValueError, TypeError, KeyError, UnicodeDecodeError):
+        raise ValueError("corrupt: its version 3.0 header cannot be read") from None
 
 
 def read_npz(stream: IO[bytes]) -> dict[str, np.ndarray]:

@@ -148,6 +148,8 @@ def test_a_failed_figure_keeps_the_old_one(tmp_path, capsys, washer, full_disk_s
         ('{"translation": null, "rotvec": [0, 0, 0]}', "'translation' must be a list of 3"),
         ('{"translation": [0, 0, 0], "rotvec": [0, 0, true]}', "'rotvec' must be a list of 3"),
         ("[" * 100_000 + "]" * 100_000, "nested too deeply to be a pose"),
+        # a number JSON holds but a float cannot (it was a traceback)
+        ('{"translation": [1' + "0" * 400 + ", 0, 0]}", "int too large to convert to float"),
         # keys that were ignored: the pose was read as identity, or without its translation
         (
             '{"translation": [0, 0, 0], "rotvec": [0, 0, 0], "frame": "base"}',

@@ -215,6 +215,54 @@ def test_a_header_claiming_more_than_the_file_holds_is_refused(tmp_path, shape):
         read_array(path)
 
 
+def test_a_version_3_header_is_checked_as_well(tmp_path):
+    # np.save writes version 3.0 (UTF-8) headers for non-Latin-1 field names; numpy has no
+    # public reader of them, and one claiming 75 GB went to np.load unchecked
+    header = "{'descr': '<f8', 'fortran_order': False, 'shape': (100000, 100000), }"
+    header += " " * (-(len(header) + 13) % 64) + "\n"
+    path = tmp_path / "three.npy"
+    path.write_bytes(b"\x93NUMPY\x03\x00" + len(header).to_bytes(4, "little") + header.encode())
+    with pytest.raises(ValueError, match=r"three\.npy: .*claims shape \(100000, 100000\)"):
+        read_frame(path)
+    garbled = tmp_path / "garbled.npy"
+    garbled.write_bytes(b"\x93NUMPY\x03\x00" + (8).to_bytes(4, "little") + b"{'shape'")
+    with pytest.raises(ValueError, match=r"garbled\.npy: .*version 3\.0 header cannot be read"):
+        read_frame(garbled)
+
+
+def _png_header(path, width, height):
+    """A PNG of an 8-bit grey image: its header and its first row alone."""
+    import struct
+    import zlib
+
+    def chunk(kind, data):
+        crc = zlib.crc32(kind + data) & 0xFFFFFFFF
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", crc)
+
+    body = struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0)
+    data = chunk(b"IDAT", zlib.compress(bytes(width + 1)))  # its first row
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", body) + data + chunk(b"IEND", b""))
+    return path
+
+
+def test_an_image_larger_than_opencv_reads_is_a_value_error(tmp_path):
+    # 10^10 pixels, over OpenCV's 2^30: it raised cv2.error (a traceback on the command line)
+    path = _png_header(tmp_path / "huge.png", 100_000, 100_000)
+    with pytest.raises(ValueError, match=r"huge\.png: OpenCV cannot read the image: its header"):
+        read_frame(path)
+
+
+def test_an_image_whose_name_is_not_utf8_is_refused_not_a_crash(tmp_path):
+    # OpenCV's imread crashed the process (a segmentation fault) on such a name
+    import os
+
+    name = os.fsdecode(os.fsencode(str(tmp_path)) + b"/bad\xff.png")
+    cv2.imwrite(str(tmp_path / "good.png"), np.zeros((4, 4), np.uint8))
+    os.rename(tmp_path / "good.png", os.fsencode(name))
+    with pytest.raises(ValueError, match=r"bad.*\.png'?: the file's name is not valid UTF-8"):
+        read_frame(name)
+
+
 def test_an_archive_member_claiming_more_than_it_holds_is_refused(tmp_path):
     import zipfile
 

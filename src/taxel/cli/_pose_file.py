@@ -18,7 +18,7 @@ def load_pose(path: Path) -> np.ndarray:
         return _read_pose(path)
     except RecursionError:
         raise ValueError(f"--pose {path}: nested too deeply to be a pose") from None
-    except (ValueError, TypeError, KeyError, OSError) as error:
+    except (ValueError, TypeError, KeyError, OSError, OverflowError) as error:
         message = error.strerror if isinstance(error, OSError) and error.strerror else error
         raise ValueError(f"--pose {path}: {message}") from None
 

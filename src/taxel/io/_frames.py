@@ -91,17 +91,31 @@ def _read_image(path: Path) -> np.ndarray:
     import cv2  # heavy; imported only when an image is read
     from cv2.utils import logging as cv_logging
 
+    name = str(path)
+    try:
+        name.encode("utf-8")
+    except UnicodeEncodeError:  # (OpenCV crashes on such a name, without a word)
+        raise ValueError(
+            f"{name!r}: the file's name is not valid UTF-8, which OpenCV cannot open; rename it"
+        ) from None
     # OpenCV logs a corrupt file's problems to stderr itself; the ValueError below says it
     previous = cv_logging.getLogLevel()
     cv_logging.setLogLevel(cv_logging.LOG_LEVEL_SILENT)
     try:
-        image = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
+        image = cv2.imread(name, cv2.IMREAD_UNCHANGED)
+        tiff = path.suffix.lower() in (".tif", ".tiff")
+        pages = cv2.imcount(name) if tiff and image is not None else 1
+    except cv2.error as error:  # e.g. a header of more pixels than OpenCV reads (2^30)
+        reason = str(getattr(error, "err", "") or error).strip().splitlines()[-1]
+        if "MAX_IMAGE_PIXELS" in reason:
+            reason = "its header claims more pixels than OpenCV reads (2^30)"
+        raise ValueError(f"{path}: OpenCV cannot read the image: {reason}") from None
     finally:
         cv_logging.setLogLevel(previous)
     if image is None:
         raise ValueError(f"{path}: cannot decode the image (corrupt or truncated file?)")
-    if path.suffix.lower() in (".tif", ".tiff") and cv2.imcount(str(path)) > 1:
-        raise ValueError(f"{path}: holds {cv2.imcount(str(path))} pages; a frame is one page")
+    if pages > 1:
+        raise ValueError(f"{path}: holds {pages} pages; a frame is one page")
     if image.ndim != 2:
         count = image.shape[2]
         raise ValueError(
