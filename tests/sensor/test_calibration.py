@@ -380,3 +380,18 @@ def test_a_file_without_a_calibrations_arrays_names_what_it_lacks(tmp_path):
     np.savez(path, **arrays)
     with pytest.raises(ValueError, match=r"not a taxel calibration file: its meta lacks repeats$"):
         Calibration.load(path)
+    # meta values that are no full scale or count: "could not convert string to float",
+    # without the file, or a negative full scale accepted
+    for key, value, problem in (
+        ("full_scale", "abc", "full_scale must be a pressure > 0 [Pa], got 'abc'"),
+        ("full_scale", -5.0, "full_scale must be a pressure > 0 [Pa], got -5.0"),
+        ("full_scale", [1], "full_scale must be a pressure > 0 [Pa], got [1]"),
+        ("repeats", "x", "repeats must be a whole number >= 1, got 'x'"),
+        ("repeats", 2.5, "repeats must be a whole number >= 1, got 2.5"),
+    ):
+        changed = json.loads(str(np.load(good)["meta"]))
+        changed[key] = value
+        np.savez(path, **{**arrays, "meta": np.array(json.dumps(changed))})
+        with pytest.raises(ValueError) as refused:
+            Calibration.load(path)
+        assert str(refused.value) == f"{path}: its meta's {problem}"

@@ -11,6 +11,7 @@ the ADC at every pressure, is excluded: its calibrated value is NaN and `valid` 
 from __future__ import annotations
 
 import json
+import math
 import os
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -345,6 +346,15 @@ class Calibration:
             raise ValueError(f"{path}: `pressures` must rise strictly, got {pressures.tolist()}")
         unresponsive = arrays["unresponsive"].astype(bool)
         pinned = arrays["pinned"].astype(bool)
+        full_scale, repeats = meta["full_scale"], meta["repeats"]
+        if not _is_real(full_scale) or not math.isfinite(full_scale) or full_scale <= 0:
+            raise ValueError(
+                f"{path}: its meta's full_scale must be a pressure > 0 [Pa], got {full_scale!r}"
+            )
+        if not isinstance(repeats, int) or isinstance(repeats, bool) or repeats < 1:
+            raise ValueError(
+                f"{path}: its meta's repeats must be a whole number >= 1, got {repeats!r}"
+            )
         return cls(
             sensor_name=str(meta["sensor_name"]),
             pressures=pressures.astype(float),
@@ -353,10 +363,15 @@ class Calibration:
             unresponsive=unresponsive,
             pinned=pinned,
             noise=arrays["noise"].astype(float),
-            full_scale=float(meta["full_scale"]),
-            repeats=int(meta["repeats"]),
+            full_scale=float(full_scale),
+            repeats=repeats,
             felt_fraction=arrays["felt_fraction"].astype(float),
         )
+
+
+def _is_real(value: Any) -> bool:
+    """Whether a JSON value is a number (not a bool, a string or a list)."""
+    return isinstance(value, int | float) and not isinstance(value, bool)
 
 
 def check_calibration(calibration: Any, sensor: TactileSensor) -> Calibration:
