@@ -272,6 +272,10 @@ def test_unreadable_calibrations_are_one_line_errors(tmp_path, capsys):
     np.savez(other, a=np.zeros(3))
     partial = tmp_path / "partial.npz"
     np.savez(partial, **{key: arrays[key] for key in ("meta", "pressures", "readings")})
+    arrays["pressures"] = arrays["pressures"][::-1].copy()  # (rising again)
+    arrays["unresponsive"] = np.ones_like(arrays["unresponsive"])
+    dead = tmp_path / "dead.npz"  # NumPy's warnings of empty means came first (4 lines)
+    np.savez(dead, **arrays)
     cases = {
         tmp_path / "missing.npz": f"--calibration {tmp_path / 'missing.npz'}: no such file\n",
         other: f"--calibration {other}: not a taxel calibration file: it lacks the array(s) "
@@ -282,6 +286,7 @@ def test_unreadable_calibrations_are_one_line_errors(tmp_path, capsys):
         empty: "not a taxel calibration file",
         falling: "`pressures` must rise strictly",
         tmp_path: "a folder, not a taxel calibration file",
+        dead: "excludes every taxel of resistive16 (none responds to load)",
     }
     out = tmp_path / "p.npy"
     for path, message in cases.items():

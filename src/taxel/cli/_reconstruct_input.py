@@ -63,14 +63,14 @@ def load_readings(
                 f"of {calibration.shape}, not {sensor.shape}"
             )
         _check_shape(path, frame, sensor)
-        warnings = _uncovered(path, frame, calibration, sensor)
-        frame = calibrated_readings(frame, calibration, sensor)
         excluded = ~calibration.valid
-        if excluded.all():
+        if excluded.all():  # (before any reading: NumPy warns of its empty means)
             raise ValueError(
                 f"--calibration {calibration_path} excludes every taxel of {sensor_name} "
                 "(none responds to load): there is nothing to reconstruct from"
             )
+        warnings = _uncovered(path, frame, calibration, sensor)
+        frame = calibrated_readings(frame, calibration, sensor)
     elif np.issubdtype(stored, np.integer):
         raise ValueError(
             f"`FRAME` {str(path)!r} holds raw codes ({stored}); give the sensor's "
