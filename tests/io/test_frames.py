@@ -122,18 +122,6 @@ def test_bad_csv_frames_name_file_and_line(tmp_path, content, message):
         read_frame(path)
 
 
-def test_a_header_of_column_numbers_is_refused_not_read_as_a_row(tmp_path):
-    # pandas' to_csv(index=False) writes 0, 1, ..., n - 1 above the frame: it was read as
-    # one more row, which moved the contact by half a row
-    path = tmp_path / "pandas.csv"
-    path.write_text("0,1,2,3\n" + "\n".join(",".join(map(str, row)) for row in GRID) + "\n")
-    with pytest.raises(ValueError, match=r"pandas\.csv, line 1: reads 0, 1, \.\.\., 3, the"):
-        read_frame(path)
-    ramp = tmp_path / "ramp.csv"  # a frame whose first row differs is read as it is
-    ramp.write_text("0,1,2,4\n5,6,7,8\n")
-    assert read_frame(ramp).tolist() == [[0, 1, 2, 4], [5, 6, 7, 8]]
-
-
 def test_binary_garbage_csv(tmp_path):
     path = tmp_path / "garbage.csv"
     path.write_bytes(b"\xff\xfe\x00\x81")

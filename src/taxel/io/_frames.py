@@ -163,7 +163,9 @@ def read_frame(
     -----
     Images are read with OpenCV (``cv2.imread(path, cv2.IMREAD_UNCHANGED)``) so that 16-bit
     PNG and TIFF keep their full depth; a frame must be grayscale and, for TIFF, one page.
-    A csv frame is a grid of numbers, one image row per line, without a header.
+    A csv frame is a grid of numbers, one image row per line, without a header: a header
+    of words is refused, but one of numbers cannot be told from a row and is read as one
+    (write a frame with pandas' ``to_csv(header=False, index=False)`` or ``np.savetxt``).
 
     Examples
     --------
@@ -193,15 +195,6 @@ def read_frame(
                 raise ValueError(f"{path}: has a time column; read it with `read_sequence`")
             raise ValueError(f"{path}, line 1: a frame csv has no header, got {table.header}")
         frame = table.values
-        columns = frame.shape[1] if frame.ndim == 2 else 0
-        if len(frame) > 1 and columns >= 3 and np.array_equal(frame[0], np.arange(columns)):
-            # (what pandas' to_csv(index=False) writes above a frame: read as data, it
-            # would add a row of 0 .. n - 1 to the frame)
-            raise ValueError(
-                f"{path}, line 1: reads 0, 1, ..., {columns - 1}, the column numbers pandas "
-                "writes as a header; a frame csv has none (to_csv(header=False), or "
-                "np.savetxt)"
-            )
     else:
         frame = _read_image(path)
     checked = _finite(path, frame, "the frame")
