@@ -252,6 +252,16 @@ def test_an_image_larger_than_opencv_reads_is_a_value_error(tmp_path):
         read_frame(path)
 
 
+@pytest.mark.parametrize("suffix", [".png", ".tif"])
+def test_an_image_of_fewer_than_8_bits_is_refused_not_scaled(tmp_path, suffix):
+    # OpenCV reads a 1-bit image's 0/1 as 0/255 (a 4-bit one's 13 as 221): not as stored
+    image = pytest.importorskip("PIL.Image")
+    path = tmp_path / f"bilevel{suffix}"
+    image.fromarray(np.eye(6, dtype=bool)).save(path)
+    with pytest.raises(ValueError, match=r"bilevel\.\w+: stores 1-bit samples, which OpenCV"):
+        read_frame(path)
+
+
 def test_an_image_whose_name_is_not_utf8_is_refused_not_a_crash(tmp_path):
     # OpenCV's imread crashed the process (a segmentation fault) on such a name
     import os

@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Literal
 
 import numpy as np
 
@@ -87,6 +88,32 @@ _CHANNELS = {
 }
 
 
+def _stored_bits(path: Path) -> int | None:
+    """Bits per sample a PNG or (first page of a) TIFF stores, from its header; else None.
+
+    OpenCV (through libpng and libtiff) scales 1-, 2- and 4-bit images to 8 bits: a 0/1
+    image reads 0/255, so such a file cannot be read as stored.
+    """
+    with open(path, "rb") as stream:
+        head = stream.read(32)
+        if head.startswith(b"\x89PNG\r\n\x1a\n") and head[12:16] == b"IHDR":
+            return head[24]
+        if head[:4] not in (b"II*\x00", b"MM\x00*"):
+            return None
+        order: Literal["little", "big"] = "little" if head[:2] == b"II" else "big"
+        stream.seek(int.from_bytes(head[4:8], order))
+        count = int.from_bytes(stream.read(2), order)
+        for _ in range(min(count, 4096)):
+            entry = stream.read(12)
+            if len(entry) < 12:
+                return None
+            if int.from_bytes(entry[:2], order) == 258:  # BitsPerSample, a SHORT
+                if int.from_bytes(entry[4:8], order) != 1:
+                    return None  # one per channel: a colour image, refused later
+                return int.from_bytes(entry[8:10], order)
+        return 1 if count <= 4096 else None  # (TIFF's default: a bilevel image omits it)
+
+
 def _read_image(path: Path) -> np.ndarray:
     import cv2  # heavy; imported only when an image is read
     from cv2.utils import logging as cv_logging
@@ -114,6 +141,12 @@ def _read_image(path: Path) -> np.ndarray:
         cv_logging.setLogLevel(previous)
     if image is None:
         raise ValueError(f"{path}: cannot decode the image (corrupt or truncated file?)")
+    bits = _stored_bits(path)
+    if bits is not None and bits < 8:
+        raise ValueError(
+            f"{path}: stores {bits}-bit samples, which OpenCV reads scaled to 8 bits (a 0/1 "
+            "image reads 0/255); save the frame with 8 or 16 bits"
+        )
     if pages > 1:
         raise ValueError(f"{path}: holds {pages} pages; a frame is one page")
     if image.ndim != 2:
