@@ -28,6 +28,7 @@ __all__ = [
     "check_progress",
     "check_range",
     "check_shape",
+    "is_json_number",
     "is_whole",
     "refuse_complex",
 ]
@@ -182,6 +183,17 @@ def check_count(name: str, value: Any, *, minimum: int = 1) -> int:
     if count < minimum:
         raise ValueError(f"`{name}` must be >= {minimum}, got {count}")
     return count
+
+
+def is_json_number(value: Any) -> bool:
+    """True for a number as JSON gives one (int or float), not a bool, a string or a list.
+
+    Examples
+    --------
+    >>> [is_json_number(v) for v in (3, 2.5, True, "3", [1])]
+    [True, True, False, False, False]
+    """
+    return isinstance(value, int | float) and not isinstance(value, bool)
 
 
 def is_whole(value: Any) -> bool:

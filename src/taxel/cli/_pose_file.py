@@ -9,6 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from taxel._validation import is_json_number
+
 __all__ = ["POSE_FORMATS", "load_pose"]
 
 
@@ -23,10 +25,6 @@ def load_pose(path: Path) -> np.ndarray:
         raise ValueError(f"--pose {path}: {message}") from None
 
 
-def _is_number(value: Any) -> bool:
-    return isinstance(value, int | float) and not isinstance(value, bool)
-
-
 def _shown(value: Any) -> str:
     """A JSON value as an error shows it, cut to 40 characters."""
     text = json.dumps(value)
@@ -36,7 +34,7 @@ def _shown(value: Any) -> str:
 def _numbers(data: dict[str, Any], key: str, length: int) -> list[float]:
     """``data[key]``, a list of `length` numbers, or a ValueError naming the key."""
     value = data[key]
-    if not (isinstance(value, list) and len(value) == length and all(map(_is_number, value))):
+    if not (isinstance(value, list) and len(value) == length and all(map(is_json_number, value))):
         raise ValueError(f"{key!r} must be a list of {length} numbers, got {_shown(value)}")
     return value
 
@@ -53,7 +51,7 @@ def _rotation_matrix(data: dict[str, Any]) -> list[list[float]]:
     """``data["rotation"]``, a 3x3 list of numbers, or a ValueError naming the key."""
     value = data["rotation"]
     if not (isinstance(value, list) and len(value) == 3 and all(
-        isinstance(row, list) and len(row) == 3 and all(map(_is_number, row)) for row in value
+        isinstance(row, list) and len(row) == 3 and all(map(is_json_number, row)) for row in value
     )):  # fmt: skip
         raise ValueError(f"'rotation' must be a 3x3 list of numbers (rows), got {_shown(value)}")
     return value

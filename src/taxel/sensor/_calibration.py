@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from taxel._npy import read_npz
-from taxel._validation import as_finite_array
+from taxel._validation import as_finite_array, is_json_number
 from taxel.sensor._monotone import invert_pchip
 from taxel.sensor._sensor import TactileSensor
 
@@ -347,7 +347,7 @@ class Calibration:
         unresponsive = arrays["unresponsive"].astype(bool)
         pinned = arrays["pinned"].astype(bool)
         full_scale, repeats = meta["full_scale"], meta["repeats"]
-        if not _is_real(full_scale) or not math.isfinite(full_scale) or full_scale <= 0:
+        if not is_json_number(full_scale) or not math.isfinite(full_scale) or full_scale <= 0:
             raise ValueError(
                 f"{path}: its meta's full_scale must be a pressure > 0 [Pa], got {full_scale!r}"
             )
@@ -367,11 +367,6 @@ class Calibration:
             repeats=repeats,
             felt_fraction=arrays["felt_fraction"].astype(float),
         )
-
-
-def _is_real(value: Any) -> bool:
-    """Whether a JSON value is a number (not a bool, a string or a list)."""
-    return isinstance(value, int | float) and not isinstance(value, bool)
 
 
 def check_calibration(calibration: Any, sensor: TactileSensor) -> Calibration:
