@@ -54,6 +54,26 @@ def test_contact_type_of_simulated_frames(vhdta, name, force, parameters, expect
     assert error < 0.5 * vhdta.taxel_pitch[0]
 
 
+@pytest.mark.parametrize(
+    ("radius", "force", "width_mm"),
+    [(3e-3, 1.5, 2.92), (6e-3, 1.0, 3.16)],
+)
+def test_a_sphere_contact_wider_than_the_point_size_is_a_surface(vhdta, radius, force, width_mm):
+    # Hertz's pressure is half its peak sqrt(3)/2 of the way to the contact's edge: the
+    # half-peak region of these contacts (2.9 and 3.2 mm wide, above the 2.5 mm point size)
+    # measures 2.6-2.7 mm, which read as a point against the point size itself
+    frame = _press(vhdta, "sphere", force, position=(1e-3, -2e-3), angle=0.4, radius=radius)
+    mask = frame.contact.contact
+    rows, cols = np.nonzero(mask)
+    spacing = vhdta.load_grid.spacing[0]
+    points = np.vstack((rows, cols)) * spacing
+    variance = np.linalg.eigvalsh(np.cov(points, bias=True)).max() + spacing**2 / 12
+    assert 4 * math.sqrt(variance) == pytest.approx(width_mm * 1e-3, abs=0.01e-3)
+    features = extract(frame.raw, vhdta)
+    assert features.contact_type == "surface"
+    assert features.shape.rule == "compact face"
+
+
 def test_edge_direction_within_two_degrees(vhdta):
     angle = 0.7
     frame = _press(vhdta, "box-edge", 10.0, position=(2e-3, 1e-3), angle=angle)

@@ -18,8 +18,10 @@ arc       a curved edge (drink-can rim)           a band whose centre line is a 
                                                   thinner than half its radius
 point     a tip, or a contact too small for the   one compact region (axes within 2:1,
           array to resolve its shape              inside the array) whose size at half its
-                                                  peak <= max(`point_size`, 2 pitches),
-                                                  widened by the cover's blur (below)
+                                                  peak <= max(`point_size`, 2 pitches)
+                                                  (x sqrt(3)/2 unless flat-topped: a Hertz
+                                                  contact's half-peak width), widened by
+                                                  the cover's blur (below)
 corner    a vertex (box corner): the contact      a compact region larger than the point
           spreads along the three edges that      size and 8 taxels whose outline has three
           leave it, a rounded triangle            lobes (3rd harmonic of radius >= 0.08)
@@ -124,6 +126,11 @@ _POINT_SIZE = 2.5e-3  # [m]
 # its half-maximum area (see `taxel.features._measures`). Both add
 # half a pitch: the contact's edge falls part-way into the next taxel.
 _POINT_PITCHES = 2.0
+# A rounded contact (sphere, tip, vertex) is not flat-topped: its pressure falls from the
+# centre to the edge, as Hertz's p0 sqrt(1 - r^2 / a^2), which is half its peak at
+# r = a sqrt(3) / 2. Its half-peak region is that fraction of its width, so the limit of a
+# faithful image compares the half-peak size with sqrt(3) / 2 of the point size.
+_HALF_PEAK_WIDTH = math.sqrt(3.0) / 2.0
 # An arc must bow by at least 2 taxels over its chord, or it is a line at this resolution.
 _MIN_SAGITTA = 2.0
 # A curved edge (a rim) presses a band much narrower than its radius of curvature: the
@@ -360,7 +367,7 @@ def shape_core(
         if flat:
             limit = smallest + prepared.blur + 0.5 * pitch
         else:
-            limit = math.hypot(smallest, prepared.blur) + 0.5 * pitch
+            limit = math.hypot(_HALF_PEAK_WIDTH * smallest, prepared.blur) + 0.5 * pitch
         if size * pitch <= limit:
             return result("point", ramp(limit / (size * pitch), 1.0, 1.3), 0.0, "small contact")
         corner = 0.0
