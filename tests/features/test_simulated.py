@@ -36,10 +36,10 @@ def _pressure_centroid(sensor, frame):
         ("edge", 5.0, {}, "line"),
         ("cylinder", 5.0, {}, "line"),
         ("box-edge", 5.0, {}, "line"),
-        # a 4.1-4.4 mm rounded triangle: three lobes. At 4-5 N (3.3-3.6 mm) the saturated
-        # image's half-peak outline measures within 0.01 mm of the point-size limit for
-        # flat-topped images and reads as a point (the benchmark counts such frames)
+        # a rounded triangle (3.9 mm at 8 N) has three lobes; at 4 N (3.1 mm) its image is
+        # flat-topped (saturated) and read as a point while the limit added the whole blur
         ("box-corner", 8.0, {}, "corner"),
+        ("box-corner", 4.0, {}, "corner"),
     ],
 )
 def test_contact_type_of_simulated_frames(vhdta, name, force, parameters, expected):

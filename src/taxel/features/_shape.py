@@ -121,11 +121,14 @@ _POINT_SIZE = 2.5e-3  # [m]
 # image is a faithful copy of the pressure, widths add in quadrature under blurring (as the
 # variances of a convolution do): the limit is sqrt(size^2 + blur^2). Where the sensor
 # saturates, the image is clipped and its half-peak contour lies where the blurred pressure
-# is half the saturation level, outside the contact by up to the blur: the limit is
-# size + blur. A saturated image is flat-topped: its top 10 % covers at least a third of
-# its half-maximum area (see `taxel.features._measures`). Both add
-# half a pitch: the contact's edge falls part-way into the next taxel.
+# is half the saturation level: at the contact's edge when the peak just saturates, out to
+# the blur beyond it when the peak is far above saturation. How far above is not in the
+# image, so the limit takes the middle of that range: size + blur / 2. A saturated image
+# is flat-topped: its top 10 % covers at least a third of its half-maximum area (see
+# `taxel.features._measures`). Both add half a pitch: the contact's edge falls part-way
+# into the next taxel.
 _POINT_PITCHES = 2.0
+_SATURATED_SPREAD = 0.5  # of the blur
 # A rounded contact (sphere, tip, vertex) is not flat-topped: its pressure falls from the
 # centre to the edge, as Hertz's p0 sqrt(1 - r^2 / a^2), which is half its peak at
 # r = a sqrt(3) / 2. Its half-peak region is that fraction of its width, so the limit of a
@@ -365,7 +368,7 @@ def shape_core(
         half, origin, size, flat, moments = half_region(prepared, main)
         smallest = max(point_size, _POINT_PITCHES * pitch)
         if flat:
-            limit = smallest + prepared.blur + 0.5 * pitch
+            limit = smallest + _SATURATED_SPREAD * prepared.blur + 0.5 * pitch
         else:
             limit = math.hypot(_HALF_PEAK_WIDTH * smallest, prepared.blur) + 0.5 * pitch
         if size * pitch <= limit:
