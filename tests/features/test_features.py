@@ -175,6 +175,22 @@ def test_line_angle_within_two_degrees(angle):
     assert line.offset_m == pytest.approx(offset, abs=0.7 * PITCH)
 
 
+@pytest.mark.parametrize("angle", [0.3, 1.2, 2.0, 2.8])
+@pytest.mark.parametrize("centre", [(0.0, 0.0), (6.0, -8.0)])
+def test_a_face_s_straight_edge_is_the_line(angle, centre):
+    # a half-plane: the line is its free edge's, not one fit through the whole outline,
+    # whose stretches along the array's border turned it by 1-4.7 degrees
+    image = render(half_plane, ftir=True, noise=0.03, rng=2, angle=angle, centre=centre)
+    shape = classify_contact(image, PITCH)
+    assert shape.rule == "face with a straight free outline"
+    error = abs((shape.line.angle_rad - angle + math.pi / 2) % math.pi - math.pi / 2)
+    assert math.degrees(error) < 0.2
+    # the outline lies outside the face's edge by the blur and smoothing (~2 taxels)
+    edge = (-math.sin(angle) * centre[0] + math.cos(angle) * centre[1]) * PITCH
+    assert -2.5 * PITCH < shape.line.offset_m - edge < 0.0
+    assert shape.line.rms_m < 0.5 * PITCH
+
+
 def test_arc_radius_within_five_percent():
     image = render(arc, ftir=True, noise=0.03, rng=4, centre=(10.0, -90.0), radius=110.0)
     shape = classify_contact(image, PITCH)

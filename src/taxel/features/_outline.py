@@ -12,12 +12,13 @@ from typing import cast
 import cv2
 import numpy as np
 
-from taxel.features._fitting import centred, dot, line_through, std, taubin_circle
+from taxel.features._fitting import LineFit, centred, dot, line_through, std, taubin_circle
 
 __all__ = [
     "bends",
     "circle_spread",
     "corner_score",
+    "edge_line",
     "free_chains",
     "line_spread",
     "lobes",
@@ -171,6 +172,34 @@ def bends(arms: tuple[float, float]) -> bool:
     """Whether two arms (from `two_arms`) can score as a corner at all (see `corner_score`)."""
     spread, angle = arms
     return math.isfinite(spread) and math.pi - angle > _IN_LINE
+
+
+def edge_line(chains: Sequence[tuple[np.ndarray, np.ndarray]]) -> LineFit:
+    """The straight edge that free outline pieces lie along (taxel units).
+
+    The direction is the total least squares direction of every piece about its own
+    centre (their scatter matrices summed), so that two pieces of one edge, or pieces of
+    unequal length or position, do not tilt it as one fit through all their points does;
+    the line runs midway between the outermost pieces' offsets (all pieces of one edge
+    share an offset). The RMS is the points' distance from that line.
+    """
+    sxx = sxy = syy = 0.0
+    centres = []
+    for x, y in chains:
+        mean_x, mean_y, _, terms = centred(x, y)
+        (xx, xy), (_, yy) = np.einsum("in,jn->ij", terms[:2], terms[:2]).tolist()
+        sxx, sxy, syy = sxx + xx, sxy + xy, syy + yy
+        centres.append((mean_x, mean_y))
+    angle = 0.5 * math.atan2(2 * sxy, sxx - syy) % math.pi
+    sine, cosine = math.sin(angle), math.cos(angle)
+    offsets = [cosine * mean_y - sine * mean_x for mean_x, mean_y in centres]
+    offset = (min(offsets) + max(offsets)) / 2
+    squared, count = 0.0, 0
+    for x, y in chains:
+        distance = cosine * y - sine * x - offset
+        squared += dot(distance, distance)
+        count += x.size
+    return LineFit(angle, offset, math.sqrt(squared / count), count)
 
 
 def free_chains(

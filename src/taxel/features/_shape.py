@@ -37,8 +37,10 @@ surface   a flat or gently curved face: punch,    everything else (closed outlin
 
 A *free outline* is the part of a contact's outline that is neither near the array's
 border (the object continues there; within the cover's depth or blur of it the cover's own
-rim presses less) nor the wall of a hole or slot (reported as such). A *band*'s centre line
-and direction are the weighted principal axis of its taxels (weights: signal above the
+rim presses less) nor the wall of a hole or slot (reported as such). The line of a face's
+straight edge (the contact on one side of its free outline) is fitted to the free pieces
+alone, each about its own centre, not to the whole outline. A *band*'s centre line and
+direction are the weighted principal axis of its taxels (weights: signal above the
 baseline), and its circle is the weighted (Taubin) circle of the same taxels, so both edges
 and the ridge between them all count. Taxels farther than 0.75 band thicknesses from the
 fitted curve are a spur (what a glass scratch leaves where it crosses the band) and the
@@ -81,6 +83,7 @@ from taxel.features._outline import (
     bends,
     circle_spread,
     corner_score,
+    edge_line,
     free_chains,
     line_spread,
     ramp,
@@ -154,6 +157,9 @@ _STRAIGHT_TAXELS = 8.0
 # Pieces of one straight outline each run within 15 deg of the line through them all (the
 # angle under which a corner's arms still count as in line, `taxel.features._outline`).
 _ALONG_LINE = math.radians(15.0)
+# A face's edge: at most 10 % of the contact (beyond a taxel of the line) lies on the far
+# side of its straight free outline; a band's sides have half of it on each side.
+_ONE_SIDE = 0.1
 # Corner: two straight arms meeting at an interior angle <= 150 deg (a straight line is 180).
 _CORNER_ANGLE = math.radians(150.0)
 
@@ -226,11 +232,13 @@ def is_textured(contact: Contact, high_point_count: int) -> bool:
 
 def _free_outline(
     contours: Sequence[np.ndarray], prepared: Prepared, explained: np.ndarray | None
-) -> tuple[str, float, float, str] | None:
+) -> tuple[str, float, float, str, LineFit | None] | None:
     """Type from the free outline pieces (see the module notes), or None without any.
 
     Outline taxels closer to the array's border than the cover is deep (and than one
-    taxel) are not free: the cover's own rim presses less there.
+    taxel) are not free: the cover's own rim presses less there. With the type comes the
+    straight edge of a face (a half-plane: the contact on one side of its free outline),
+    whose line is that edge's (taxel units), else None.
     """
     margin = max(1, math.ceil(prepared.cover_depth / prepared.mean_pitch))
     chains = free_chains(contours, prepared.image.shape, explained, margin)
@@ -256,15 +264,33 @@ def _free_outline(
         # a vertex: two straight arms, which fit better than one circle (a curved edge,
         # such as a hole cut by the array's corner, is fitted as well by a circle)
         if arms[0] <= allowed and arms[1] <= _CORNER_ANGLE and arms[0] < round_spread:
-            return "corner", max(corner, 0.5), corner, "free outline with a vertex"
+            return "corner", max(corner, 0.5), corner, "free outline with a vertex", None
         best_corner = max(best_corner, corner)
     if straight and len(chains) > 1 and not _one_line(chains):
         # straight pieces that no one line runs through: a curved outline clipped by the
         # array (a broad disc's rim left only at the array's corners), not an edge
-        return "surface", 0.7, best_corner, "face with a curved free outline"
+        return "surface", 0.7, best_corner, "face with a curved free outline", None
     if straight:
-        return "line", 0.8, best_corner, "face with a straight free outline"
-    return "surface", 0.7, best_corner, "face with a curved free outline"
+        line = edge_line(chains)
+        face_edge = line if _one_side(prepared.mask, line) else None
+        return "line", 0.8, best_corner, "face with a straight free outline", face_edge
+    return "surface", 0.7, best_corner, "face with a curved free outline", None
+
+
+def _one_side(mask: np.ndarray, line: LineFit) -> bool:
+    """Whether the contact lies on one side of a straight free outline: a face's edge.
+
+    A band clipped by the array's border (a short cylinder) has a free outline too, its
+    two sides and end, with contact on both sides of the line through them: its line is
+    the whole outline's, which holds both sides. Taxels within one taxel of the line are
+    the outline's own jitter and are not counted.
+    """
+    rows, cols = np.nonzero(mask)
+    distance = math.cos(line.angle_rad) * rows - math.sin(line.angle_rad) * cols
+    distance -= line.offset_m
+    above = cv2.countNonZero((distance > 1.0).view(np.uint8))
+    below = cv2.countNonZero((distance < -1.0).view(np.uint8))
+    return min(above, below) <= _ONE_SIDE * max(above, below, 1)
 
 
 def _one_line(chains: Sequence[tuple[np.ndarray, np.ndarray]]) -> bool:
@@ -322,7 +348,12 @@ def shape_core(
     line = circle = None
 
     def result(
-        kind: str, confidence: float, corner: float, rule: str, edge: float | None = None
+        kind: str,
+        confidence: float,
+        corner: float,
+        rule: str,
+        edge: float | None = None,
+        face_edge: LineFit | None = None,
     ) -> ContactShape:
         fitted_line, fitted_circle = line, circle
         if fitted_line is None:
@@ -332,6 +363,8 @@ def shape_core(
             elif outline:  # the outline's own line and circle
                 points = np.concatenate(outline).reshape(-1, 2).astype(float)
                 fitted_line, fitted_circle = fit_line_and_circle(points[:, 0], points[:, 1])
+        if face_edge is not None:  # the line of a face's edge is that edge's, not the outline's
+            fitted_line = face_edge
         if fitted_line is not None:
             assert fitted_circle is not None  # the line and circle are fitted together
             fitted_line = to_metres_line(fitted_line, prepared)
@@ -383,7 +416,8 @@ def shape_core(
     decided = _free_outline(contours, prepared, explained)
     if decided is None:
         return result("surface", 1.0, 0.0, "face with a closed or no free outline", 0.0)
-    return result(*decided, 1.0 if decided[0] == "line" else 0.0)
+    kind, confidence, corner, rule, face_edge = decided
+    return result(kind, confidence, corner, rule, 1.0 if kind == "line" else 0.0, face_edge)
 
 
 def classify_contact(
