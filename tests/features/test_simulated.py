@@ -1,6 +1,7 @@
 """The features on frames of the sensor simulator, one per kind of indenter, known answers."""
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -151,6 +152,18 @@ def test_sixteen_by_sixteen_pen_and_edge():
     assert edge.contact_type == "line"
     error = abs((edge.shape.line.angle_rad - 0.5 + math.pi / 2) % math.pi - math.pi / 2)
     assert math.degrees(error) < 3.0
+
+
+@pytest.mark.parametrize("position", [(10e-3, -6e-3), (-9e-3, 8e-3)])
+def test_sixteen_by_sixteen_washer_cut_by_the_border_is_a_face(position):
+    # a 14 mm washer cut by the array's border: its rim, 3.5 taxels in radius, passed the
+    # straight tolerance over its 8-10 taxels and read as a face's straight edge (`line`)
+    sensor = replace(make_sensor("resistive16"), oversampling=4)
+    washer = {"outer_radius": 7e-3, "inner_radius": 3e-3, "edge_radius": 0.15e-3}
+    frame = _press(sensor, "washer", 20.0, position=position, **washer)
+    shape = extract(frame.raw, sensor).shape
+    assert shape.contact_type == "surface"
+    assert shape.rule == "face with a curved free outline"
 
 
 def test_a_4x4_frame_takes_the_sensors_noise():

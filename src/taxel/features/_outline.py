@@ -18,6 +18,7 @@ __all__ = [
     "bends",
     "circle_spread",
     "corner_score",
+    "curved",
     "edge_line",
     "free_chains",
     "line_spread",
@@ -40,6 +41,13 @@ _MIN_VERTEX_OFFSET = 2.0
 # The corner score ramps up as the arms turn from 15 to 35 degrees off a straight line.
 _IN_LINE = math.radians(15.0)
 _BENT = math.radians(35.0)
+# A piece that passes as straight is a circle arc when it bows by >= 2 taxels over its
+# length (the arc's sagitta, as for a band in `taxel.features._shape`) and a circle fits it
+# at least twice as closely as the line: a round face's rim (a washer, a plate's hole
+# wall) within a few taxels' radius bows like that, while a short band's clipped end (two
+# sides and the cap between them) is fitted by a circle barely better than by its axis.
+_ARC_BOW = 2.0
+_ARC_CLOSER = 0.5
 # Free outline pieces shorter than this many taxels are ignored (blur-rounded corners).
 _MIN_CHAIN = 6
 _ZERO = np.zeros(1, np.int8)
@@ -102,6 +110,23 @@ def circle_spread(x: np.ndarray, y: np.ndarray, points: Centred | None = None) -
     residual = np.hypot(x - centre_x, y - centre_y)
     residual -= radius
     return _spread(residual)
+
+
+def curved(x: np.ndarray, y: np.ndarray, points: Centred, line: float, extent: float) -> bool:
+    """Whether an outline piece within the straight tolerance is a circle arc (see above).
+
+    `points`: (x, y) as `centred` gave them (its third row is overwritten); `line`: the
+    piece's band-aware spread about its line; `extent`: its length along it [taxels].
+    """
+    circle = taubin_circle(x, y, points)
+    if circle is None:
+        return False
+    centre_x, centre_y, radius = circle
+    if sagitta(radius, extent) < _ARC_BOW:
+        return False
+    residual = np.hypot(x - centre_x, y - centre_y)
+    residual -= radius
+    return _spread(residual) <= _ARC_CLOSER * line
 
 
 def tolerance(length: float) -> float:

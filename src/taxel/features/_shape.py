@@ -27,7 +27,8 @@ corner    a vertex (box corner): the contact      a compact region larger than t
           leave it, a rounded triangle            lobes (3rd harmonic of radius >= 0.08)
 line      a face whose straight edge crosses      the free outline is straight over 8
           the array (half-plane)                  taxels or more (its pieces, if several,
-                                                  along one line)
+                                                  along one line), not an arc bowing by 2
+                                                  taxels that a circle fits twice as well
 corner    a face with a vertex (wedge)            a free outline of two straight arms
                                                   meeting at <= 150 deg that fit it
                                                   better than one circle
@@ -83,6 +84,7 @@ from taxel.features._outline import (
     bends,
     circle_spread,
     corner_score,
+    curved,
     edge_line,
     free_chains,
     line_spread,
@@ -251,7 +253,10 @@ def _free_outline(
         single, extent = line_spread(x, y, points)
         allowed = tolerance(extent)
         if single <= allowed and extent >= _STRAIGHT_TAXELS:
-            continue  # straight: no vertex, no curve
+            if not curved(x, y, points, single, extent):
+                continue  # straight: no vertex, no curve
+            straight = False  # a round rim, a few taxels in radius
+            continue
         if single <= allowed:
             straight = False  # too short to tell straight from curved
             continue
