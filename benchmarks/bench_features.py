@@ -335,15 +335,20 @@ def _confusion(rows: list[dict]) -> list[str]:
 
 def _per_indenter(rows: list[dict]) -> list[str]:
     lines = [
-        "| indenter | frames | type correct | centroid median [taxels] |",
-        "|---|---|---|---|",
+        "| indenter | frames | type correct | centroid error median / p95 / max [taxels] "
+        "| centroid error over 0.5 taxel |",
+        "|---|---|---|---|---|",
     ]
     for name in dict.fromkeys(r["indenter"] for r in rows):
         subset = [r for r in rows if r["indenter"] == name]
         correct = sum(r["type"] == r["truth"] for r in subset)
-        errors = [r["centroid"] for r in subset if r["centroid"] is not None]
-        centroid = f"{np.median(errors):.2f}" if errors else "-"
-        lines.append(f"| {name} | {len(subset)} | {correct} | {centroid} |")
+        errors = np.array([r["centroid"] for r in subset if r["centroid"] is not None])
+        centroid, over = "-", "-"
+        if errors.size:
+            median, p95 = np.percentile(errors, [50, 95])
+            centroid = f"{median:.2f} / {p95:.2f} / {errors.max():.2f}"
+            over = f"{np.count_nonzero(errors > 0.5)} of {errors.size}"
+        lines.append(f"| {name} | {len(subset)} | {correct} | {centroid} | {over} |")
     return lines
 
 
