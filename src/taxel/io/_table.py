@@ -56,6 +56,17 @@ def _is_number(field: str) -> bool:
     return True
 
 
+_OTHER_SEPARATORS = {";": "semicolons", "\t": "tabs"}
+
+
+def _separator_hint(field: str, delimiter: str) -> str:
+    """A note on a field that holds another separator (a spreadsheet's export), or ''."""
+    for separator, name in _OTHER_SEPARATORS.items():
+        if separator != delimiter and separator in field.strip():
+            return f" (fields must be separated by {delimiter!r}; this line has {name})"
+    return ""
+
+
 def read_numeric_table(
     path: str | os.PathLike[str], *, delimiter: str = ",", header: bool | None = None
 ) -> NumericTable:
@@ -117,8 +128,9 @@ def read_numeric_table(
             try:
                 row = [float(field) for field in fields]
             except ValueError:
-                bad = next(field.strip() for field in fields if not _is_number(field))
-                problem = f"not a number: {bad!r}" if bad else "empty field"
+                bad = next(field for field in fields if not _is_number(field))
+                problem = f"not a number: {bad.strip()!r}" if bad.strip() else "empty field"
+                problem += _separator_hint(bad, delimiter)
             else:
                 if not all(math.isfinite(value) for value in row):
                     problem = "NaN or infinite value"
