@@ -76,6 +76,15 @@ def test_a_corrupt_file_is_refused_naming_the_file_and_what_is_wrong(
     assert "taxel can read" in str(refused.value)
 
 
+@pytest.mark.parametrize("make", [_table, _library, _calibration])
+def test_a_file_saved_with_a_byte_order_mark_is_read(tmp_path, make):
+    # an editor on Windows may save UTF-8 with a byte-order mark, which is no part of JSON
+    saved = make()
+    path = tmp_path / "file.json"
+    path.write_text(json.dumps(saved.to_dict()), encoding="utf-8-sig")
+    assert type(saved).load(path).to_dict() == saved.to_dict()
+
+
 def test_a_table_s_version_is_said_as_written(tmp_path):
     data = _table().to_dict()
     data["version"] = "2"  # text, not the number 2

@@ -69,6 +69,11 @@ def test_json_round_trip(tmp_path):
     np.testing.assert_array_equal(loaded.center, model.center)
     queries = np.array([[0.1, 0.3, 9.0], [3.0, 3.5, np.nan]])
     assert loaded.predict(queries).tolist() == model.predict(queries).tolist()
+    # the same file saved again by an editor that writes a UTF-8 byte-order mark
+    path.write_text(text, encoding="utf-8-sig")
+    assert (
+        TextureClassifier.load(path).predict(queries).tolist() == loaded.predict(queries).tolist()
+    )
 
 
 def test_save_refuses_to_overwrite(tmp_path):

@@ -332,6 +332,10 @@ def test_pose_as_rotation_and_translation(tmp_path, capsys, washer):
     assert main(["features", str(frame), "--pitch", "2.5e-4", "--pose", str(pose), "--json"]) == 0
     again = json.loads(capsys.readouterr().out)["contact"]
     assert again["centroid_base_m"] == contact["centroid_base_m"]
+    # the same file as Windows' Notepad saves it, with a UTF-8 byte-order mark
+    pose.write_text(json.dumps({"matrix": matrix}), encoding="utf-8-sig")
+    assert main(["features", str(frame), "--pitch", "2.5e-4", "--pose", str(pose), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["contact"] == contact
 
 
 @pytest.mark.parametrize(

@@ -38,7 +38,7 @@ def read_json(
     if not source.is_file():
         raise FileNotFoundError(f"{str(source)!r} does not exist")
     try:
-        data = json.loads(source.read_text())
+        data = json.loads(source.read_text(encoding="utf-8-sig"))
     except (json.JSONDecodeError, UnicodeDecodeError) as error:
         raise ValueError(f"`path` {str(source)!r} is not a JSON file: {error}") from None
     except RecursionError:

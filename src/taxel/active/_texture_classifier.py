@@ -210,7 +210,7 @@ class TextureClassifier:
         if not path.is_file():
             raise FileNotFoundError(f"no such file: {path}")
         try:
-            data = json.loads(path.read_text())
+            data = json.loads(path.read_text(encoding="utf-8-sig"))
         except (json.JSONDecodeError, UnicodeDecodeError) as error:
             raise ValueError(f"{path}: not a JSON file ({error})") from None
         except RecursionError:

@@ -99,7 +99,7 @@ def _read_pose(path: Path) -> np.ndarray:
     from taxel.frames import as_pose, make_pose
 
     try:
-        data = json.loads(path.read_text(), object_pairs_hook=_unique_keys)
+        data = json.loads(path.read_text(encoding="utf-8-sig"), object_pairs_hook=_unique_keys)
     except json.JSONDecodeError as error:
         raise ValueError(f"not valid JSON ({error.msg})") from None
     if isinstance(data, list):
