@@ -655,11 +655,27 @@ def test_pitch_pair_and_duck_typed_sensor():
         (np.full((8, 8), 2**60, np.uint64), 1e-3, ValueError, r"magnitude 1.15e\+18"),
         (np.full((8, 8), -(2**63), np.int64), 1e-3, ValueError, r"magnitude 9.22e\+18"),
         (np.full((8, 8), 1e16, np.longdouble), 1e-3, ValueError, r"magnitude 1e\+16"),
+        # big-endian data: the limit is on the values, not on the bytes read as native
+        (np.full((8, 8), 2.0**60, ">f4"), 1e-3, ValueError, r"magnitude 1.15e\+18"),
+        (np.pad([[2.0**200]], 4).astype(">f8"), 1e-3, ValueError, r"magnitude 1.61e\+60"),
+        # a masked array's mask would be dropped, and a ragged list is no array
+        (np.ma.masked_equal(np.eye(8), 1.0), 1e-3, TypeError, "`image` is a masked array"),
+        ([[1, 2, 3], [1, 2], [1, 2, 3]], 1e-3, ValueError, "`image` must be a 2-D array of"),
     ],
 )
 def test_bad_input(image, pitch, error, match):
     with pytest.raises(error, match=match):
         extract(image, pitch)
+
+
+@pytest.mark.parametrize("dtype", [">f8", ">f4", ">u2", ">i4"])
+def test_a_big_endian_image_reads_as_its_values(dtype):
+    # a big-endian float image's values were read by OpenCV as native bytes: refused as
+    # "magnitude 5.3e+306" (or let through when huge)
+    image = render(cone, (32, 32), noise=0.01, rng=1) * 1000
+    native = extract(image.astype(dtype.replace(">", "=")), 1e-3)
+    swapped = extract(image.astype(dtype), 1e-3)
+    assert swapped.to_json() == native.to_json()
 
 
 def test_a_pitch_saved_with_numpy_is_a_pitch():

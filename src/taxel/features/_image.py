@@ -255,10 +255,20 @@ def _peak_region(
 
 def _as_image(image: Any, name: str = "image") -> np.ndarray:
     """Validate a 2-D numeric image (the parameter `name`) and return it as float32."""
-    array = np.asarray(image)
+    if isinstance(image, np.ma.MaskedArray):
+        # np.asarray would drop the mask and read the values under it
+        raise TypeError(
+            f"`{name}` is a masked array: fill its masked taxels first (`{name}.filled(...)`)"
+        )
+    try:
+        array = np.asarray(image)
+    except ValueError as error:  # a ragged nested list
+        raise ValueError(f"`{name}` must be a 2-D array of numbers: {error}") from None
     kind = array.dtype.kind
     if kind not in "biuf":
         raise TypeError(f"`{name}` must be numeric, got dtype {array.dtype}")
+    if not array.dtype.isnative:  # big-endian data (OpenCV reads the bytes as native)
+        array = array.astype(array.dtype.newbyteorder("="))
     if array.ndim != 2:
         raise ValueError(f"`{name}` must be 2-D (rows, cols), got shape {array.shape}")
     if min(array.shape) < 3:
