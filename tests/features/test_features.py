@@ -164,6 +164,19 @@ def test_point_type_and_centroid_under_translation(shift):
     assert abs(row - 63.5 - shift[1]) < 0.5
 
 
+@pytest.mark.parametrize(("top", "left"), [(0, 6), (1, 6), (13, 0), (6, 13), (0, 0)])
+@pytest.mark.parametrize("size", [1, 3])
+def test_a_contact_at_the_border_has_its_own_centroid(top, left, size):
+    # the smoothing mirrors the image at the border: a centroid weighted by the smoothed
+    # image put a hot taxel on row 0 at row 0.29, and a 3 x 3 square on rows 1-3 at 1.91
+    image = np.zeros((16, 16))
+    image[top : top + size, left : left + size] = 1.0
+    contact = extract(image, 1e-3).contact
+    centre = (top + (size - 1) / 2, left + (size - 1) / 2)
+    assert contact.centroid_index == pytest.approx(centre, abs=1e-9)
+    assert contact.regions[0].centroid_index == pytest.approx(centre, abs=1e-9)
+
+
 @pytest.mark.parametrize("angle", [0.1, 0.8, 2.0, 3.0])
 def test_line_angle_within_two_degrees(angle):
     image = render(band, ftir=True, noise=0.05, rng=3, angle=angle, centre=(5.0, -4.0))
