@@ -792,6 +792,11 @@ def test_bad_options():
         extract(image, 1e-3, point_size=0)
     with pytest.raises(ValueError, match="`depth`"):
         extract(image, 1e-3, depth=np.zeros((2, 2)))
+    # a depth map in other units (its squares overflowed in the plane fit, with a warning)
+    with pytest.raises(ValueError, match=r"`depth` is an indentation .* got 1e\+300"):
+        extract(image, 1e-3, depth=np.full((8, 8), 1e300))
+    with pytest.raises(ValueError, match=r"within \+-1 m, got 2"):
+        extract(image, 1e-3, depth=np.eye(8) * -2.0)
     with pytest.raises(ValueError, match="`noise` must be > 0, got -1"):
         extract(image, 1e-3, noise=-1.0)
 

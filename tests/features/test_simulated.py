@@ -166,6 +166,22 @@ def test_sixteen_by_sixteen_washer_cut_by_the_border_is_a_face(position):
     assert shape.rule == "face with a curved free outline"
 
 
+@pytest.mark.parametrize("pitch", [2e-3, np.float64(2e-3), np.array([2e-3, 2e-3])])
+def test_a_sensor_whose_pitch_is_one_number_is_a_sensor(pitch):
+    # a duck-typed sensor giving its pitch as one number (as a bare pitch may be) failed in
+    # the cover's blur: "'float' object is not subscriptable", "unhashable type"
+    sensor = make_sensor("resistive16")
+
+    class Described:
+        taxel_pitch = pitch
+
+        def __getattr__(self, name):
+            return getattr(sensor, name)
+
+    raw = _press(sensor, "sphere", 2.0).raw
+    assert extract(raw, Described()).to_json() == extract(raw, sensor).to_json()
+
+
 def test_a_4x4_frame_takes_the_sensors_noise():
     # 4 taxels read 8371 against 3040-3101 on a noise-free frame: the 4 interior taxels
     # cannot give the noise (it came out ~3500 codes); the sensor's is 33.2 codes
@@ -217,8 +233,10 @@ def test_noise_sensor_is_asked_for_on_raw_frames_of_a_sensor():
         extract(raw, sensor, calibrated=True, noise="sensor")
     with pytest.raises(ValueError, match="`noise` must be a number or 'sensor', got 'camera'"):
         extract(raw, sensor, noise="camera")
-    with pytest.raises(TypeError, match="`noise='sensor'` needs a sensor that reads frames"):
+    with pytest.raises(TypeError, match="`noise='sensor'` needs `sensor_or_pitch` to be a"):
         extract(raw, 2e-3, noise="sensor")
+    with pytest.raises(TypeError, match="`sensor` must be a sensor that reads frames"):
+        sensor_noise(2e-3)
 
 
 def test_a_pvdf_frame_falls_with_pressure_and_is_turned_over():

@@ -26,6 +26,9 @@ __all__ = ["ContactPose", "TactileFeatures", "extract"]
 # A region filling >= 90 % of its convex hull (taxels as unit squares) is convex up to the
 # taxel grid, so the seed's diameter test cannot find 4 crossings on it.
 _CONVEX_FILL = 0.9
+# A cover's indentation is millimetres; beyond a metre a depth map is in other units (and
+# its squares overflow in the plane fit).
+_DEEPEST = 1.0  # [m]
 
 
 @record
@@ -252,7 +255,8 @@ def extract(
         ``T_BS``, the sensor frame in the robot's base frame (see `taxel.frames`).
     depth : array_like, shape (rows, cols), optional
         Indentation of the cover's surface [m], positive into the cover, for sensors that
-        measure displacement or depth: gives the contact plane's normal and the contact's z.
+        measure displacement or depth: gives the contact plane's normal and the contact's z
+        (within +-1 m).
     calibrated : bool, default False
         The image holds pressure [Pa], so areas carry a total force [N].
     smoothing : float, default 1.0
@@ -324,6 +328,12 @@ def extract(
             raise ValueError(
                 f"`depth` must have the image's shape {prepared.image.shape}, "
                 f"got {depth_map.shape}"
+            )
+        deepest = float(np.max(np.abs(depth_map)))
+        if deepest > _DEEPEST:
+            raise ValueError(
+                f"`depth` is an indentation in metres and must lie within +-{_DEEPEST:g} m, "
+                f"got {deepest:.3g}"
             )
     contact = contact_regions(prepared)
     texture = texture_core(prepared, sigma=texture_sigma)

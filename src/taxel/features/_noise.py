@@ -137,5 +137,10 @@ def taxel_noise(
                 "`noise='sensor'` is the noise of the sensor's raw frames, not of a calibrated "
                 "image: give its noise in the image's units, or leave it to be estimated"
             )
+        if not callable(getattr(sensor_or_pitch, "frame_from_pressure", None)):
+            raise TypeError(
+                "`noise='sensor'` needs `sensor_or_pitch` to be a sensor that reads frames (a "
+                f"taxel.sensor.TactileSensor), got {type(sensor_or_pitch).__name__}"
+            )
         return sensor_noise(sensor_or_pitch)
     return check_positive("noise", noise)

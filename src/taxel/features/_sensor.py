@@ -73,14 +73,15 @@ def cover_blur(sensor_or_pitch: Any) -> float:
     cover = getattr(sensor_or_pitch, "cover", None)
     if fields is None or sensed is None or grid is None or cover is None:
         return 0.0
-    key = (cover, grid.shape, grid.spacing, sensor_or_pitch.taxel_pitch)
+    pitch = pitch_pair(sensor_or_pitch)  # (a duck-typed sensor may give one number)
+    key = (cover, grid.shape, grid.spacing, pitch)
     width = _BLUR_CACHE.get(key)
     if width is None:
         pressure = np.zeros(grid.shape)
         pressure[grid.shape[0] // 2, grid.shape[1] // 2] = 1e5
         response = np.abs(np.asarray(sensed(pressure, fields(pressure)), dtype=float))
         row = response[int(np.argmax(response.max(axis=1)))]
-        width = float(np.count_nonzero(row >= 0.5 * row.max())) * sensor_or_pitch.taxel_pitch[1]
+        width = float(np.count_nonzero(row >= 0.5 * row.max())) * pitch[1]
         _BLUR_CACHE[key] = width
     return width
 
@@ -119,7 +120,7 @@ def sensor_noise(sensor: Any) -> float:
 
     if not callable(getattr(sensor, "frame_from_pressure", None)):
         raise TypeError(
-            f"`noise='sensor'` needs a sensor that reads frames (a taxel.sensor.TactileSensor), "
+            f"`sensor` must be a sensor that reads frames (a taxel.sensor.TactileSensor), "
             f"got {type(sensor).__name__}"
         )
     cached = _NOISE_CACHE.get(sensor)
@@ -136,8 +137,8 @@ def sensor_noise(sensor: Any) -> float:
         raw = given.astype(np.float32)
         if raw.ndim != 2:
             raise ValueError(
-                f"`noise='sensor'` needs a sensor whose raw frames are images, got frames of "
-                f"shape {raw.shape}"
+                f"`sensor` must read raw frames that are images, got frames of shape "
+                f"{raw.shape}"
             )
         resampled = hexagonal_resampled(raw, sensor)
         if given.dtype.kind in "biu" and resampled is raw:  # residuals: multiples of 1/4
