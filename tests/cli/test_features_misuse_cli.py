@@ -34,6 +34,20 @@ def test_the_figure_never_replaces_the_reference(tmp_path, capsys, washer):
     assert reference.read_bytes() == before
 
 
+def test_the_figure_never_replaces_the_pose(tmp_path, capsys, washer):
+    # a pose file named *.png was replaced by the figure under --overwrite
+    frame, pose = tmp_path / "frame.npy", tmp_path / "pose.png"
+    np.save(frame, washer)
+    pose.write_text('{"matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}')
+    before = pose.read_bytes()
+    args = ["features", str(frame), "--pitch", "1e-3", "--pose", str(pose)]
+    assert main([*args, "--figure", str(pose), "--overwrite"]) == 2
+    assert _one_line(capsys) == (
+        f"taxel features: error: --figure {str(pose)!r} is an input file; choose another\n"
+    )
+    assert pose.read_bytes() == before
+
+
 @pytest.mark.parametrize(
     ("content", "message"),
     [

@@ -266,7 +266,9 @@ def _run(arguments: argparse.Namespace) -> int:
             overwrite=arguments.overwrite,
             name="--figure",
             inputs=tuple(
-                path for path in (arguments.file, arguments.reference, arguments.depth) if path
+                path
+                for path in (arguments.file, arguments.reference, arguments.depth, arguments.pose)
+                if path
             ),
         )
     try:

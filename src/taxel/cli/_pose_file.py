@@ -13,6 +13,8 @@ from taxel._validation import is_json_number
 
 __all__ = ["POSE_FORMATS", "load_pose"]
 
+_LARGEST_FILE = 100_000  # [bytes]
+
 
 def load_pose(path: Path) -> np.ndarray:
     """The --pose file's 4x4 pose; any problem with it is a ValueError naming --pose."""
@@ -36,7 +38,10 @@ def _numbers(data: dict[str, Any], key: str, length: int) -> list[float]:
     value = data[key]
     if not (isinstance(value, list) and len(value) == length and all(map(is_json_number, value))):
         raise ValueError(f"{key!r} must be a list of {length} numbers, got {_shown(value)}")
-    return value
+    try:
+        return [float(number) for number in value]
+    except OverflowError:  # an integer of hundreds of digits
+        raise ValueError(f"{key!r} holds a number too large for a double") from None
 
 
 # the accepted layouts of a --pose file, for its help and its errors
@@ -60,13 +65,17 @@ def _rotation_matrix(data: dict[str, Any]) -> list[list[float]]:
 def _unit_quaternion(data: dict[str, Any]) -> list[float]:
     """``data["quaternion"]`` scaled to unit length, or a ValueError naming the key.
 
-    ``math.hypot`` neither overflows nor underflows where SciPy's norm would (1e300, 1e-300).
+    Scaled by its largest component first, so that ``math.hypot`` neither overflows nor
+    underflows where SciPy's norm would (1e300, 1e-300; four components of 1e308 overflow
+    hypot itself).
     """
     quaternion = _numbers(data, "quaternion", 4)
-    norm = math.hypot(*quaternion)
-    if norm == 0.0:
+    largest = max(abs(component) for component in quaternion)
+    if largest == 0.0:
         raise ValueError("'quaternion' [0, 0, 0, 0] is no rotation: its length must not be 0")
-    return [component / norm for component in quaternion]
+    scaled = [component / largest for component in quaternion]
+    norm = math.hypot(*scaled)
+    return [component / norm for component in scaled]
 
 
 def _rotation_vector(data: dict[str, Any]) -> list[float]:
@@ -98,8 +107,12 @@ def _read_pose(path: Path) -> np.ndarray:
     """A 4x4 pose from JSON in one of the `POSE_FORMATS`; any other key is refused."""
     from taxel.frames import as_pose, make_pose
 
+    with path.open("rb") as stream:  # a pose is a few hundred bytes; /dev/zero is endless
+        content = stream.read(_LARGEST_FILE + 1)
+    if len(content) > _LARGEST_FILE:
+        raise ValueError(f"more than {_LARGEST_FILE // 1000} kB: not a pose file")
     try:
-        data = json.loads(path.read_text(encoding="utf-8-sig"), object_pairs_hook=_unique_keys)
+        data = json.loads(content.decode("utf-8-sig"), object_pairs_hook=_unique_keys)
     except json.JSONDecodeError as error:
         raise ValueError(f"not valid JSON ({error.msg})") from None
     if isinstance(data, list):
