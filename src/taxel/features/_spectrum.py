@@ -118,7 +118,8 @@ def _pair_powers(squares: np.ndarray, shape: tuple[int, int], lone: np.ndarray) 
     return out
 
 
-@lru_cache(maxsize=32)
+# a sensor loop reads one shape; a layout holds ~30 bytes per taxel (65 MB at 1500 x 1500)
+@lru_cache(maxsize=4)
 def _layout(shape: tuple[int, int], pitch: tuple[float, float]) -> _Layout:
     """Window, bins and octave bands of an image shape and pitch (cached)."""
     rows, cols = shape
