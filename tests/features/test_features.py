@@ -436,6 +436,21 @@ def test_fits_reference_values():
         fit_circle([[0.0, 0.0], [1.0, 1.0]])
 
 
+@pytest.mark.parametrize("scale", [1e-100, 1e-80, 1e-6, 1e12, 1e50, 1e155, 1e300])
+def test_fits_hold_at_any_scale(scale):
+    # the fits squared raw coordinates: at 1e155 they overflowed (a warning, or a NaN line);
+    # from 1e50 up and at 1e-100 an arc read as collinear; at 1e-80 its radius read 2.973
+    phase = np.linspace(0.0, math.pi / 2, 20)
+    arc = np.column_stack((2 + 3 * np.cos(phase), -1 + 3 * np.sin(phase))) * scale
+    circle = fit_circle(arc)
+    assert circle.radius_m == pytest.approx(3 * scale, rel=1e-9)
+    assert circle.center_m == pytest.approx((2 * scale, -scale), rel=1e-9)
+    t = np.linspace(0.0, 2.0, 30)
+    line = fit_line(np.column_stack((t, 0.5 - t)) * scale)
+    assert math.degrees(line.angle_rad) == pytest.approx(135.0)
+    assert line.offset_m == pytest.approx(0.5 * scale * math.cos(math.radians(135)), rel=1e-9)
+
+
 def test_texture_orders_with_bumpiness_and_is_size_free():
     rng = np.random.default_rng(0)
     smooth = render(texture, rng=rng, count=10, spike=0.2, width=5.0)

@@ -116,6 +116,20 @@ def _points(points: Any, minimum: int) -> np.ndarray:
     return array
 
 
+def _normalised(array: np.ndarray) -> tuple[np.ndarray, np.ndarray, tuple[float, float], float]:
+    """Points about their mean, scaled to a largest coordinate of 1, with the mean and scale.
+
+    The fits square and multiply coordinates: points at 1e155 m overflow, and their
+    thresholds for collinear points are absolute; at unit scale neither is a concern.
+    """
+    centre = (float(array[:, 0].mean()), float(array[:, 1].mean()))
+    x, y = array[:, 0] - centre[0], array[:, 1] - centre[1]
+    scale = float(max(np.max(np.abs(x)), np.max(np.abs(y))))
+    if not 0.0 < scale < math.inf:  # all points equal (or spanning beyond a double)
+        return x, y, centre, 1.0
+    return x / scale, y / scale, centre, scale
+
+
 def centred(
     x: np.ndarray, y: np.ndarray, weight: np.ndarray | None = None
 ) -> tuple[float, float, float, np.ndarray]:
@@ -383,8 +397,11 @@ def fit_line(points: Any) -> LineFit:
     >>> round(float(np.degrees(fit.angle_rad)), 6), round(fit.offset_m, 6), round(fit.rms_m, 9)
     (45.0, 0.707107, 0.0)
     """
-    array = _points(points, 2)
-    return line_fit_core(array[:, 0], array[:, 1])
+    x, y, centre, scale = _normalised(_points(points, 2))
+    fit = line_fit_core(x, y)
+    sine, cosine = math.sin(fit.angle_rad), math.cos(fit.angle_rad)
+    offset = fit.offset_m * scale + cosine * centre[1] - sine * centre[0]
+    return LineFit(fit.angle_rad, offset, fit.rms_m * scale, fit.n_points)
 
 
 def fit_circle(points: Any) -> CircleFit:
@@ -413,5 +430,7 @@ def fit_circle(points: Any) -> CircleFit:
     >>> [round(v, 6) for v in fit.center_m], round(fit.radius_m, 6)
     ([2.0, -1.0], 3.0)
     """
-    array = _points(points, 3)
-    return circle_fit_core(array[:, 0], array[:, 1])
+    x, y, centre, scale = _normalised(_points(points, 3))
+    fit = circle_fit_core(x, y)
+    middle = (fit.center_m[0] * scale + centre[0], fit.center_m[1] * scale + centre[1])
+    return CircleFit(middle, fit.radius_m * scale, fit.rms_m * scale, fit.n_points)
