@@ -425,8 +425,8 @@ def _response_note(rows: list[dict], sensor) -> list[str]:
         times.append(CLOCK() - start)
     return [
         "",
-        "Centroid reference row: the features weight the contact by the smoothed image above "
-        "its baseline, after removing defects narrower than 3 taxels, because an image of "
+        "Centroid reference row: the features weight the contact by the image (unsmoothed) "
+        "above its baseline, after removing defects narrower than 3 taxels, because an image of "
         "unknown response is all they are given. The reference turns the raw frame back "
         "into pressure at the sensing plane through the sensor's own response (its known "
         "scratch pattern subtracted, the grey level read as real contact area and that as "

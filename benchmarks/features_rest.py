@@ -139,6 +139,7 @@ def section(quick: bool, seed: int, evaluate) -> str:
         "its taxels differ from each other as much as noise does: the noise estimated from "
         "the frame is then the texture's, and the contact does not clear it even with the "
         "no-load level known. The sensor's own noise is right only for frames no noisier "
-        "than the sensor's model (these carry up to 5 % of full scale more)."
+        "than the sensor's model (these carry up to "
+        f"{features_scenes.NOISE_LEVELS[1]:.0%} of full scale more)."
     )
     return "\n".join(lines)

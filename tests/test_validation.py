@@ -42,6 +42,8 @@ def test_public_functions_refuse_complex_arrays():
         ([1.0, np.nan], ValueError, r"`x` must be finite everywhere, got 1 NaN or inf value\(s\)"),
         (["a"], TypeError, "`x` must be numeric, got"),
         (np.zeros((2, 2)), ValueError, r"`x` must be 1-D, got shape \(2, 2\)"),
+        # its mask would be dropped and the values under it read
+        (np.ma.masked_invalid([1.0, np.nan]), TypeError, "`x` is a masked array: fill its"),
     ],
 )
 def test_other_bad_arrays(value, error, message):

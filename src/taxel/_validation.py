@@ -121,13 +121,15 @@ def as_finite_array(name: str, value: Any, *, ndim: int | None = None) -> np.nda
     """Return `value` as a float64 array, or raise when it has NaN/inf or the wrong ndim.
 
     A complex array is refused (NumPy would drop its imaginary part with a warning only),
-    and so are text ("1" would be read as 1.0) and a lone bool (True as 1.0): almost always
-    slips. An array of booleans is a mask, read as 0 and 1 (a binary tactile image, a load
-    pattern).
+    and so are text ("1" would be read as 1.0), a lone bool (True as 1.0) and a masked
+    array (its mask would be dropped, its hidden values read): almost always slips. An
+    array of booleans is a mask, read as 0 and 1 (a binary tactile image, a load pattern).
     """
     refuse_complex(name, value)
     if isinstance(value, str | bytes | bool | np.bool_):
         raise TypeError(f"`{name}` must be numeric, got {_short(value)}")
+    if isinstance(value, np.ma.MaskedArray):  # np.asarray would drop the mask
+        raise TypeError(f"`{name}` is a masked array: fill its masked values first")
     kind = getattr(getattr(value, "dtype", None), "kind", None)
     if kind is None and isinstance(value, list | tuple):
         try:

@@ -149,7 +149,14 @@ def test_a_failed_figure_keeps_the_old_one(tmp_path, capsys, washer, full_disk_s
         ('{"translation": [0, 0, 0], "rotvec": [0, 0, true]}', "'rotvec' must be a list of 3"),
         ("[" * 40_000 + "]" * 40_000, "nested too deeply to be a pose"),
         # a number JSON holds but a float cannot (it was a traceback)
-        ('{"translation": [1' + "0" * 400 + ", 0, 0]}", "'translation' holds a number too large"),
+        ('{"translation": [1' + "0" * 400 + ", 0, 0]}", "the number 10000000000000000... is"),
+        (
+            '{"matrix": [[1e400, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}',
+            "the number 1e400 is too",
+        ),
+        # JSON has no NaN, but Python reads it (max() then took [0, 0, 0, NaN] for zeros)
+        ('{"translation": [0, 0, 0], "quaternion": [0, 0, 0, NaN]}', "NaN is not a number a"),
+        ('{"translation": [0, 0, 0], "quaternion": [0, 0, 1, Infinity]}', "Infinity is not a"),
         # keys that were ignored: the pose was read as identity, or without its translation
         (
             '{"translation": [0, 0, 0], "rotvec": [0, 0, 0], "frame": "base"}',

@@ -164,6 +164,17 @@ def test_point_type_and_centroid_under_translation(shift):
     assert abs(row - 63.5 - shift[1]) < 0.5
 
 
+@pytest.mark.parametrize(("x", "y"), [(8.5, 8.0), (8.3, 8.4)])
+def test_a_tip_between_taxels_of_a_coarse_array_is_a_point(x, y):
+    # its half-peak region is two adjacent taxels (2.31 taxels across): the 2-pitch floor
+    # is the array's resolution, which Hertz's sqrt(3)/2 must not shrink
+    rows, cols = np.mgrid[:16, :16]
+    image = np.exp(-((cols - x) ** 2 + (rows - y) ** 2) / (2 * 0.7**2))
+    image += np.random.default_rng(1).normal(0, 0.005, image.shape)
+    shape = classify_contact(image, 2e-3)
+    assert (shape.contact_type, shape.rule) == ("point", "small contact")
+
+
 @pytest.mark.parametrize(("top", "left"), [(0, 6), (1, 6), (13, 0), (6, 13), (0, 0)])
 @pytest.mark.parametrize("size", [1, 3])
 def test_a_contact_at_the_border_has_its_own_centroid(top, left, size):
@@ -443,12 +454,15 @@ def test_fits_hold_at_any_scale(scale):
     phase = np.linspace(0.0, math.pi / 2, 20)
     arc = np.column_stack((2 + 3 * np.cos(phase), -1 + 3 * np.sin(phase))) * scale
     circle = fit_circle(arc)
-    assert circle.radius_m == pytest.approx(3 * scale, rel=1e-9)
-    assert circle.center_m == pytest.approx((2 * scale, -scale), rel=1e-9)
+    # in units of `scale` (pytest.approx's absolute 1e-12 would pass anything at 1e-80)
+    assert circle.radius_m / scale == pytest.approx(3.0, rel=1e-9, abs=0)
+    centre = [value / scale for value in circle.center_m]
+    assert centre == pytest.approx([2.0, -1.0], rel=1e-9, abs=0)
     t = np.linspace(0.0, 2.0, 30)
     line = fit_line(np.column_stack((t, 0.5 - t)) * scale)
     assert math.degrees(line.angle_rad) == pytest.approx(135.0)
-    assert line.offset_m == pytest.approx(0.5 * scale * math.cos(math.radians(135)), rel=1e-9)
+    offset = 0.5 * math.cos(math.radians(135.0))
+    assert line.offset_m / scale == pytest.approx(offset, rel=1e-9, abs=0)
 
 
 def test_texture_orders_with_bumpiness_and_is_size_free():

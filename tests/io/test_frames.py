@@ -114,9 +114,11 @@ def test_unknown_suffix(tmp_path):
         ("a, b, c\n1, 2, 3\n", r"empty\.csv, line 1: a frame csv has no header"),
         ("timestamp, b\n1, 2\n", r"has a time column; read it with `read_sequence`"),
         # a spreadsheet's export with another separator: the message says which
-        ("0;1;2\n3;4;5\n", r"line 2: not a number: '3;4;5' \(fields must be separated by "),
-        ("0\t1\t2\n3\t4\t5\n", r"line 2: not a number: .*this line has tabs\)"),
-        ("0,5;1,5\n", r"line 1: not a number: '5;1' \(.*this line has semicolons\)"),
+        ("0;1;2\n3;4;5\n", r"line 1: one field, '0;1;2' \(fields must be separated by ','"),
+        ("0;1;2\n", r"line 1: one field, '0;1;2' \(.*this line has semicolons\)"),
+        ("0\t1\t2\n3\t4\t5\n", r"line 1: one field, .*this line has tabs\)"),
+        ("0,5;1,5\n", r"line 1: not a number: '5;1' \(.*with '\.' for decimals; this line has"),
+        ("1, 2\n3;4, 5\n", r"line 2: not a number: '3;4' \(.*this line has semicolons\)"),
     ],
 )
 def test_bad_csv_frames_name_file_and_line(tmp_path, content, message):

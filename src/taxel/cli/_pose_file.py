@@ -38,10 +38,7 @@ def _numbers(data: dict[str, Any], key: str, length: int) -> list[float]:
     value = data[key]
     if not (isinstance(value, list) and len(value) == length and all(map(is_json_number, value))):
         raise ValueError(f"{key!r} must be a list of {length} numbers, got {_shown(value)}")
-    try:
-        return [float(number) for number in value]
-    except OverflowError:  # an integer of hundreds of digits
-        raise ValueError(f"{key!r} holds a number too large for a double") from None
+    return [float(number) for number in value]  # (finite: see `_finite`)
 
 
 # the accepted layouts of a --pose file, for its help and its errors
@@ -103,6 +100,26 @@ def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
     return data
 
 
+def _finite(text: str) -> float:
+    """A JSON number as a double, or a ValueError when it is too large for one (1e400)."""
+    value = float(text)
+    if not math.isfinite(value):
+        shown = text if len(text) <= 20 else text[:17] + "..."
+        raise ValueError(f"the number {shown} is too large for a double")
+    return value
+
+
+def _finite_int(text: str) -> int:
+    """A JSON integer, kept whole (as errors show it), when a double can hold it."""
+    _finite(text)
+    return int(text)
+
+
+def _not_a_number(name: str) -> float:
+    """JSON's NaN, Infinity and -Infinity (which Python reads) are no part of a pose."""
+    raise ValueError(f"{name} is not a number a pose may hold")
+
+
 def _read_pose(path: Path) -> np.ndarray:
     """A 4x4 pose from JSON in one of the `POSE_FORMATS`; any other key is refused."""
     from taxel.frames import as_pose, make_pose
@@ -112,7 +129,13 @@ def _read_pose(path: Path) -> np.ndarray:
     if len(content) > _LARGEST_FILE:
         raise ValueError(f"more than {_LARGEST_FILE // 1000} kB: not a pose file")
     try:
-        data = json.loads(content.decode("utf-8-sig"), object_pairs_hook=_unique_keys)
+        data = json.loads(
+            content.decode("utf-8-sig"),
+            object_pairs_hook=_unique_keys,
+            parse_float=_finite,
+            parse_int=_finite_int,
+            parse_constant=_not_a_number,
+        )
     except json.JSONDecodeError as error:
         raise ValueError(f"not valid JSON ({error.msg})") from None
     if isinstance(data, list):

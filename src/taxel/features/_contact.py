@@ -37,7 +37,8 @@ class ContactRegion:
     centroid_index : (float, float)
         Centre of pressure as (row, col) taxel indices: the centroid weighted by the
         unsmoothed signal above the baseline (the smoothing mirrors the image at the
-        array's border, which pulled a contact there inward by up to 0.3 taxel).
+        array's border, which pulled a contact there inward: by 0.3 taxel at the default
+        smoothing, more with more).
     centroid_m : (float, float)
         The same point (x, y) in the sensor frame [m].
     area_taxels : int
@@ -161,11 +162,13 @@ def region_moments(prepared: Prepared, mask: np.ndarray) -> tuple[dict, dict]:
 def _signal_centre(prepared: Prepared, mask: np.ndarray) -> tuple[float, float] | None:
     """Centroid (row, col) of the unsmoothed signal above the baseline over `mask`, or None.
 
-    Read in the contact window's rows (whole rows: the columns need no shift). None when
-    the signal there sums to no more than 0 (noise around a weak contact).
+    Read in the contact window's rows (whole rows: the columns need no shift); taxels below
+    the baseline weigh 0, so the centroid lies among the mask's taxels. None when no taxel
+    is above it.
     """
     rows = contact_window(prepared)[0]
     signal = prepared.image[rows] - np.float32(prepared.baseline)
+    np.maximum(signal, 0.0, out=signal)  # a taxel's noise below the baseline weighs nothing
     signal *= mask[rows]
     moments = cv2.moments(signal)
     if not moments["m00"] > 0:
@@ -300,6 +303,7 @@ def _label_terms(prepared: Prepared) -> tuple[np.ndarray, np.ndarray, np.ndarray
     np.square(cols_f, out=terms[4])
     np.multiply(rows_f, cols_f, out=terms[5])
     np.subtract(values, prepared.baseline, out=weight)  # unsmoothed, as `_signal_centre`
+    np.maximum(weight, 0.0, out=weight)
     np.multiply(weight, rows_f, out=terms[7])
     np.multiply(weight, cols_f, out=terms[8])
     return labels.ravel().take(flat), values, terms

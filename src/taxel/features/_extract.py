@@ -264,7 +264,8 @@ def extract(
     baseline : float, optional
         No-contact level [image units]; estimated as the smoothed image's minimum if omitted.
     point_size : float, default 2.5e-3
-        Compact contacts up to this size [m] are points (see `classify_contact`).
+        Compact contacts up to this size [m] are points, their size read at half their
+        peak (see `classify_contact`).
     texture_sigma : float, default 2.0
         Gaussian sigma before counting texture maxima [taxels].
     defects : bool, optional

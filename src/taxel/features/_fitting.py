@@ -117,17 +117,19 @@ def _points(points: Any, minimum: int) -> np.ndarray:
 
 
 def _normalised(array: np.ndarray) -> tuple[np.ndarray, np.ndarray, tuple[float, float], float]:
-    """Points about their mean, scaled to a largest coordinate of 1, with the mean and scale.
+    """Points scaled to a largest coordinate of 1 and moved to their mean; the mean and scale.
 
-    The fits square and multiply coordinates: points at 1e155 m overflow, and their
-    thresholds for collinear points are absolute; at unit scale neither is a concern.
+    Taubin's cubic takes the coordinates to the 8th power: at 1e50 m its coefficients
+    overflow and at 1e-80 m they underflow; at unit scale neither happens. The points are
+    scaled before they are centred, so that neither their sum nor their differences
+    overflow. Returns x and y about the mean, the mean (x, y) and the scale [m].
     """
-    centre = (float(array[:, 0].mean()), float(array[:, 1].mean()))
-    x, y = array[:, 0] - centre[0], array[:, 1] - centre[1]
-    scale = float(max(np.max(np.abs(x)), np.max(np.abs(y))))
-    if not 0.0 < scale < math.inf:  # all points equal (or spanning beyond a double)
-        return x, y, centre, 1.0
-    return x / scale, y / scale, centre, scale
+    scale = float(np.max(np.abs(array)))
+    if scale == 0.0:  # all points at the origin
+        scale = 1.0
+    x, y = array[:, 0] / scale, array[:, 1] / scale
+    middle_x, middle_y = float(x.mean()), float(y.mean())
+    return x - middle_x, y - middle_y, (middle_x * scale, middle_y * scale), scale
 
 
 def centred(
@@ -400,7 +402,7 @@ def fit_line(points: Any) -> LineFit:
     x, y, centre, scale = _normalised(_points(points, 2))
     fit = line_fit_core(x, y)
     sine, cosine = math.sin(fit.angle_rad), math.cos(fit.angle_rad)
-    offset = fit.offset_m * scale + cosine * centre[1] - sine * centre[0]
+    offset = fit.offset_m * scale + (cosine * centre[1] - sine * centre[0])
     return LineFit(fit.angle_rad, offset, fit.rms_m * scale, fit.n_points)
 
 

@@ -23,6 +23,7 @@ __all__ = [
     "free_chains",
     "line_spread",
     "lobes",
+    "one_side",
     "ramp",
     "sagitta",
     "tolerance",
@@ -48,6 +49,9 @@ _BENT = math.radians(35.0)
 # sides and the cap between them) is fitted by a circle barely better than by its axis.
 _ARC_BOW = 2.0
 _ARC_CLOSER = 0.5
+# A face's edge: at most 10 % of the contact (beyond a taxel of the line) lies on the far
+# side of its straight free outline; a band's sides have half of it on each side.
+_ONE_SIDE = 0.1
 # Free outline pieces shorter than this many taxels are ignored (blur-rounded corners).
 _MIN_CHAIN = 6
 _ZERO = np.zeros(1, np.int8)
@@ -225,6 +229,22 @@ def edge_line(chains: Sequence[tuple[np.ndarray, np.ndarray]]) -> LineFit:
         squared += dot(distance, distance)
         count += x.size
     return LineFit(angle, offset, math.sqrt(squared / count), count)
+
+
+def one_side(mask: np.ndarray, line: LineFit) -> bool:
+    """Whether the contact lies on one side of a straight free outline: a face's edge.
+
+    A band clipped by the array's border (a short cylinder) has a free outline too, its
+    two sides and end, with contact on both sides of the line through them: its line is
+    the whole outline's, which holds both sides. Taxels within one taxel of the line are
+    the outline's own jitter and are not counted.
+    """
+    rows, cols = np.nonzero(mask)
+    distance = math.cos(line.angle_rad) * rows - math.sin(line.angle_rad) * cols
+    distance -= line.offset_m
+    above = cv2.countNonZero((distance > 1.0).view(np.uint8))
+    below = cv2.countNonZero((distance < -1.0).view(np.uint8))
+    return min(above, below) <= _ONE_SIDE * max(above, below, 1)
 
 
 def free_chains(

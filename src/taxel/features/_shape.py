@@ -20,8 +20,8 @@ point     a tip, or a contact too small for the   one compact region (axes withi
           array to resolve its shape              inside the array) whose size at half its
                                                   peak <= max(`point_size`, 2 pitches)
                                                   (x sqrt(3)/2 unless flat-topped: a Hertz
-                                                  contact's half-peak width), widened by
-                                                  the cover's blur (below)
+                                                  contact's half-peak width, but not under
+                                                  2 pitches), widened by the cover's blur
 corner    a vertex (box corner): the contact      a compact region larger than the point
           spreads along the three edges that      size and 8 taxels whose outline has three
           leave it, a rounded triangle            lobes (3rd harmonic of radius >= 0.08)
@@ -88,6 +88,7 @@ from taxel.features._outline import (
     edge_line,
     free_chains,
     line_spread,
+    one_side,
     ramp,
     sagitta,
     tolerance,
@@ -126,19 +127,22 @@ _POINT_SIZE = 2.5e-3  # [m]
 # image is a faithful copy of the pressure, widths add in quadrature under blurring (as the
 # variances of a convolution do): the limit is sqrt(size^2 + blur^2). Where the sensor
 # saturates, the image is clipped and its half-peak contour lies where the blurred pressure
-# is half the saturation level: at the contact's edge when the peak just saturates, out to
-# the blur beyond it when the peak is far above saturation. How far above is not in the
-# image, so the limit takes the middle of that range: size + blur / 2. A saturated image
-# is flat-topped: its top 10 % covers at least a third of its half-maximum area (see
-# `taxel.features._measures`). Both add half a pitch: the contact's edge falls part-way
-# into the next taxel.
+# is half the saturation level: outside the contact by an amount that grows with how far
+# the peak is above saturation (a blur width on each side at ~50 times), which the clipped
+# image does not tell. The limit adds half the blur to the size: a value chosen on the
+# features benchmark (of 0, 1/4, 1/2, 3/4 and 1 blur, the best on both draws of simulated
+# frames; it added 1 blur before). A saturated image is flat-topped: its top 10 % covers
+# at least a third of its half-maximum area (see `taxel.features._measures`). Both add
+# half a pitch: the contact's edge falls part-way into the next taxel.
 _POINT_PITCHES = 2.0
-_SATURATED_SPREAD = 0.5  # of the blur
+_SATURATED_SPREAD = 0.5  # of the blur (chosen on the benchmark, see above)
 # A rounded contact (sphere, tip, vertex) is not flat-topped: its pressure falls from the
 # centre to the edge, as Hertz's p0 sqrt(1 - r^2 / a^2), which is half its peak at
 # r = a sqrt(3) / 2. Its half-peak region is that fraction of its width, so the limit of a
-# faithful image compares the half-peak size with sqrt(3) / 2 of the point size.
-_HALF_PEAK_WIDTH = math.sqrt(3.0) / 2.0
+# faithful image compares the half-peak size with sqrt(3) / 2 of the point size, but never
+# with less than the 2-pitch floor itself: whatever the pressure, a tip between two
+# taxels lights both (a region 2.31 taxels across, within the floor's half-pitch margin).
+_HALF_PEAK_RATIO = math.sqrt(3.0) / 2.0
 # An arc must bow by at least 2 taxels over its chord, or it is a line at this resolution.
 _MIN_SAGITTA = 2.0
 # A curved edge (a rim) presses a band much narrower than its radius of curvature: the
@@ -159,9 +163,6 @@ _STRAIGHT_TAXELS = 8.0
 # Pieces of one straight outline each run within 15 deg of the line through them all (the
 # angle under which a corner's arms still count as in line, `taxel.features._outline`).
 _ALONG_LINE = math.radians(15.0)
-# A face's edge: at most 10 % of the contact (beyond a taxel of the line) lies on the far
-# side of its straight free outline; a band's sides have half of it on each side.
-_ONE_SIDE = 0.1
 # Corner: two straight arms meeting at an interior angle <= 150 deg (a straight line is 180).
 _CORNER_ANGLE = math.radians(150.0)
 
@@ -185,10 +186,12 @@ class ContactShape:
     corner_score : float
         Evidence in [0, 1] that the contact is a vertex rather than an edge or a surface.
     line : LineFit or None
-        For a band, its centre line; otherwise the line fitted to the contact's outline [m].
+        For a band, its centre line; for a face's straight edge (a half-plane), that edge,
+        fitted to the free outline alone; otherwise the line fitted to the contact's
+        outline [m].
     circle : CircleFit or None
         For a band, the circle through its taxels; otherwise the circle fitted to the
-        contact's outline [m].
+        contact's whole outline [m] (for a face's edge too, so it is not the line's fit).
     n_edges : int
         Number of outline curves of the contact (outer outlines and hole walls).
     thickness_m : float
@@ -277,25 +280,9 @@ def _free_outline(
         return "surface", 0.7, best_corner, "face with a curved free outline", None
     if straight:
         line = edge_line(chains)
-        face_edge = line if _one_side(prepared.mask, line) else None
+        face_edge = line if one_side(prepared.mask, line) else None
         return "line", 0.8, best_corner, "face with a straight free outline", face_edge
     return "surface", 0.7, best_corner, "face with a curved free outline", None
-
-
-def _one_side(mask: np.ndarray, line: LineFit) -> bool:
-    """Whether the contact lies on one side of a straight free outline: a face's edge.
-
-    A band clipped by the array's border (a short cylinder) has a free outline too, its
-    two sides and end, with contact on both sides of the line through them: its line is
-    the whole outline's, which holds both sides. Taxels within one taxel of the line are
-    the outline's own jitter and are not counted.
-    """
-    rows, cols = np.nonzero(mask)
-    distance = math.cos(line.angle_rad) * rows - math.sin(line.angle_rad) * cols
-    distance -= line.offset_m
-    above = cv2.countNonZero((distance > 1.0).view(np.uint8))
-    below = cv2.countNonZero((distance < -1.0).view(np.uint8))
-    return min(above, below) <= _ONE_SIDE * max(above, below, 1)
 
 
 def _one_line(chains: Sequence[tuple[np.ndarray, np.ndarray]]) -> bool:
@@ -404,11 +391,13 @@ def shape_core(
     compact = region.minor_axis_m >= _COMPACT_RATIO * region.major_axis_m
     if compact and not region.touches_border:
         half, origin, size, flat, moments = half_region(prepared, main)
-        smallest = max(point_size, _POINT_PITCHES * pitch)
+        floor = _POINT_PITCHES * pitch
+        smallest = max(point_size, floor)
         if flat:
             limit = smallest + _SATURATED_SPREAD * prepared.blur + 0.5 * pitch
         else:
-            limit = math.hypot(_HALF_PEAK_WIDTH * smallest, prepared.blur) + 0.5 * pitch
+            widened = math.hypot(_HALF_PEAK_RATIO * smallest, prepared.blur)
+            limit = max(widened, floor) + 0.5 * pitch
         if size * pitch <= limit:
             return result("point", ramp(limit / (size * pitch), 1.0, 1.3), 0.0, "small contact")
         corner = 0.0
@@ -441,8 +430,9 @@ def classify_contact(
     sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
         Taxel pitch [m], or a sensor description.
     point_size : float, default 2.5e-3
-        A compact contact whose size (major axis at half its peak) is at most this [m]
-        (or 2 taxel pitches), allowing for the cover's blur, is a point.
+        A compact contact no larger than this [m] (or 2 taxel pitches) is a point: its size
+        is read at half its peak, which is sqrt(3)/2 of a rounded (Hertz) contact's width,
+        allowing for the cover's blur and for saturation (see the module notes).
     **preparation
         `calibrated`, `smoothing`, `baseline`, `defects`, `noise` and `reference`, passed
         on to `prepare` with its defaults (so that this agrees with `extract`).

@@ -118,7 +118,8 @@ def _pair_powers(squares: np.ndarray, shape: tuple[int, int], lone: np.ndarray) 
     return out
 
 
-# a sensor loop reads one shape; a layout holds ~30 bytes per taxel (65 MB at 1500 x 1500)
+# a sensor loop reads one shape and pitch; a layout holds ~30 bytes per taxel (65 MB at
+# 1500 x 1500): the last 4 are kept
 @lru_cache(maxsize=4)
 def _layout(shape: tuple[int, int], pitch: tuple[float, float]) -> _Layout:
     """Window, bins and octave bands of an image shape and pitch (cached)."""

@@ -63,7 +63,10 @@ def _separator_hint(field: str, delimiter: str) -> str:
     """A note on a field that holds another separator (a spreadsheet's export), or ''."""
     for separator, name in _OTHER_SEPARATORS.items():
         if separator != delimiter and separator in field.strip():
-            return f" (fields must be separated by {delimiter!r}; this line has {name})"
+            return (
+                f" (fields must be separated by {delimiter!r}, with '.' for decimals; this line "
+                f"has {name})"
+            )
     return ""
 
 
@@ -110,6 +113,10 @@ def read_numeric_table(
     first_fields = [field.strip() for field in first_line.split(delimiter)]
     if header is None:
         header = not any(_is_number(field) for field in first_fields)
+        hint = _separator_hint(first_line, delimiter)
+        if header and len(first_fields) == 1 and hint:
+            # numbers with another separator are no header
+            raise ValueError(f"{path}, line {first_number}: one field, {first_fields[0]!r}{hint}")
     if header:
         names = tuple(first_fields)
         numbered = numbered[1:]
