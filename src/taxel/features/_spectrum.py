@@ -40,9 +40,9 @@ class _Layout(NamedTuple):
     second: np.ndarray  # per bin: of its imaginary part (0, the mean, zeroed, if it has none)
     paired: np.ndarray | None  # per bin: its power's index in `_pair_powers` (None: odd cols)
     lone: np.ndarray  # flat indices of the entries that are real bins alone (`_pair_powers`)
-    halved: np.ndarray  # positions of the bins that are their own conjugate (but the mean)
+    share: np.ndarray  # per bin: 0.5 if it is its own conjugate (but the mean), else 1; float64
     frequency: np.ndarray  # per bin [cycles/m], float32
-    shared_frequency: np.ndarray  # `frequency`, halved at `halved`, float32
+    shared_frequency: np.ndarray  # `frequency` times `share`, float32
     starts: np.ndarray  # where each octave band begins in the bins' order
     empty: np.ndarray | None  # bands holding no bin (tiny images), or None
 
@@ -158,7 +158,7 @@ def _layout(shape: tuple[int, int], pitch: tuple[float, float]) -> _Layout:
         second,
         _pair_positions(rows, cols, first),
         _lone_entries(rows, cols),
-        np.flatnonzero(share != 1.0),
+        share,
         frequency,
         (frequency * share).astype(np.float32),  # (exact: halving a float32)
         starts,
@@ -219,9 +219,8 @@ def _band_powers(squares: np.ndarray, layout: _Layout) -> tuple[np.ndarray, floa
     else:  # (the same sums, each of the same two squares)
         power = _pair_powers(squares, layout.window.shape, layout.lone).take(layout.paired)
     strongest = float(layout.frequency[cv2.minMaxLoc(power.reshape(1, -1))[3][0]])
-    # the self-conjugate bins' halves, exact (in float64, and for the frequency-weighted
-    # total, on the frequencies: the products are the same)
-    halved = power.astype(np.float64)
-    halved[layout.halved] *= 0.5
+    # the self-conjugate bins' halves, exact (in float64, as one product by 1 or 0.5; and
+    # for the frequency-weighted total, on the frequencies: the products are the same)
+    halved = np.multiply(power, layout.share, dtype=np.float64)
     sums = np.add.reduceat(halved, layout.starts)
-    return sums, float(sums.sum()), dot(power, layout.shared_frequency), strongest
+    return sums, float(np.add.reduce(sums)), dot(power, layout.shared_frequency), strongest
