@@ -359,6 +359,7 @@ def extract(
         n_slots=len(slots),
         explained=explained,
         high_point_count=texture.maxima_count,
+        textured=textured,
         point_size=point_size,
         contours=contours,
         outline_fit=outline_fit,

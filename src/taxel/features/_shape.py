@@ -312,15 +312,17 @@ def shape_core(
     n_slots: int,
     explained: np.ndarray | None,
     high_point_count: int,
+    textured: bool,
     point_size: float = _POINT_SIZE,
     contours: Sequence[np.ndarray] | None = None,
     outline_fit: _OutlineFit | Callable[[], _OutlineFit | None] | None = None,
 ) -> ContactShape:
     """Classify a prepared image (internal core of `classify_contact`).
 
-    `contours`: the contact's outlines (every taxel), if already found; `outline_fit`:
-    the line and circle fitted to them in taxel units, or a function that fits them when
-    first called (a band's type does without). Only the
+    `textured`: `is_textured` of the contact and `high_point_count`, as the gaps were
+    found with it (computed once). `contours`: the contact's outlines (every taxel), if
+    already found; `outline_fit`: the line and circle fitted to them in taxel units, or a
+    function that fits them when first called (a band's type does without). Only the
     measures a rule needs are computed; `size_m` and `lobes` are None when not measured.
     """
     require_square_taxels(prepared.pitch, "the contact type", prepared.hexagonal)
@@ -371,7 +373,7 @@ def shape_core(
 
     # a face's region is as long as it is thin wherever holes or gaps cut it: its
     # elongation says nothing of an edge, so the rules below that decide a face set it
-    if is_textured(contact, high_point_count):
+    if textured:
         if high_point_count >= _MANY_HIGH_POINTS:
             return result("surface", 1.0, 0.0, "many high points (texture)", 0.0)
         return result("surface", 1.0, 0.0, "several contacts (texture)", 0.0)
@@ -465,7 +467,8 @@ def classify_contact(
     prepared = prepare(image, sensor_or_pitch, **preparation)
     contact = contact_regions(prepared)
     count = high_points(prepared)[0]
-    holes, slots, explained = gaps_core(prepared, textured=is_textured(contact, count))
+    textured = is_textured(contact, count)
+    holes, slots, explained = gaps_core(prepared, textured=textured)
     return shape_core(
         prepared,
         contact,
@@ -473,5 +476,6 @@ def classify_contact(
         n_slots=len(slots),
         explained=explained,
         high_point_count=count,
+        textured=textured,
         point_size=point_size,
     )
