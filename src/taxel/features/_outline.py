@@ -286,8 +286,9 @@ def free_chains(
         # start on a taxel that is not free, so that no free piece wraps around the end
         start = int(free.argmin())
         free = np.concatenate((free[start:], free[:start], _ZERO), dtype=np.int8)
-        # +1 where a free piece begins, -1 after it ends: from the first, they alternate
-        changes = np.flatnonzero(free[1:] - free[:-1]).tolist()
+        # where a free piece begins, and after it ends: from the first, they alternate
+        # (`nonzero` of the 1-D comparison: np.flatnonzero's indices, without its wrapper)
+        changes = (free[1:] != free[:-1]).nonzero()[0].tolist()
         pieces = [
             (begin, end)
             for begin, end in zip(changes[::2], changes[1::2], strict=True)
