@@ -167,14 +167,19 @@ def two_arms(x: np.ndarray, y: np.ndarray, points: Centred | None = None) -> tup
     if off[vertex] < _MIN_VERTEX_OFFSET:
         return math.inf, math.pi
     vx, vy = x[vertex].item(), y[vertex].item()
-    # each point joins the arm whose segment it lies nearer to
+    # each point joins the arm whose segment it lies nearer to: both arms at once, a row
+    # each (the same products and quotients, element by element, as one arm at a time)
     from_x, from_y = x - vx, y - vy
-    distances = []
-    for ex, ey in ((ax, ay), (bx, by)):
-        length_sq = max((ex - vx) ** 2 + (ey - vy) ** 2, 1e-12)
-        t = (from_x * (ex - vx) + from_y * (ey - vy)) / length_sq
-        np.minimum(np.maximum(t, 0, out=t), 1, out=t)  # np.clip(t, 0, 1), without its wrapper
-        distances.append(np.hypot(from_x - t * (ex - vx), from_y - t * (ey - vy)))
+    arms = np.array(
+        [
+            [ex - vx, ey - vy, max((ex - vx) ** 2 + (ey - vy) ** 2, 1e-12)]
+            for ex, ey in ((ax, ay), (bx, by))
+        ]
+    )
+    along_x, along_y, length_sq = arms[:, 0:1], arms[:, 1:2], arms[:, 2:3]
+    t = (from_x * along_x + from_y * along_y) / length_sq
+    np.minimum(np.maximum(t, 0, out=t), 1, out=t)  # np.clip(t, 0, 1), without its wrapper
+    distances = np.hypot(from_x - t * along_x, from_y - t * along_y)
     first = distances[0] <= distances[1]
     count = int(np.count_nonzero(first))
     smaller = min(count, first.size - count)
