@@ -5,8 +5,10 @@ pair of conjugate bins once, packed as "CCS" (the real and imaginary parts of a 
 neighbouring entries), in two thirds of the time of the full complex spectrum. The band
 sums, the power-weighted mean frequency and the strongest bin are read from that packed
 half directly, with indices worked out once per image shape. With an even number of
-columns, each bin's two squared parts are first added where they lie (`_pair_powers`), so
-that one gather reads the bins' powers, at two thirds of the cost of one gather per part.
+columns, on an image over 32 x 32 taxels, each bin's two squared parts are first added
+where they lie (`_pair_powers`), so that one gather reads the bins' powers, at two thirds
+of the cost of one gather per part; on a smaller image, the pairing's several operations
+cost more than the second gather saves (16 x 16: 2.5 times as much).
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ import cv2
 import numpy as np
 
 from taxel.features._fitting import dot
+from taxel.features._window import WHOLE_IMAGE
 
 __all__ = ["OCTAVES", "RippleSpectrum", "ripple_spectrum"]
 
@@ -213,7 +216,7 @@ def _band_powers(squares: np.ndarray, layout: _Layout) -> tuple[np.ndarray, floa
     sums are float64. Sums that overflow are inf (no warning).
     """
     squares[0] = 0.0  # the mean; also the missing imaginary part of the real bins
-    if layout.paired is None:
+    if layout.paired is None or squares.size <= WHOLE_IMAGE:  # (see the module notes)
         power = squares.take(layout.first)
         cv2.add(power, squares.take(layout.second), dst=power)
     else:  # (the same sums, each of the same two squares)
