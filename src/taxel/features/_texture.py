@@ -240,11 +240,16 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
         return 0, 0.0  # (no maximum above its ring, as on a ridge: no erosion needed)
     lowest = cv2.erode(smooth, _square(2 * math.ceil(radius) + 1))[maxima[:, 1], maxima[:, 0]]
     standing = _standing(every[1], lowest, margin)
-    if not np.count_nonzero(standing):
+    kept = np.count_nonzero(standing)
+    if not kept:
         return 0, 0.0
-    points = maxima[standing]
-    centres, heights, high = (values[standing] for values in every)
-    if not np.count_nonzero(high):
+    # (where every one stands, the usual case, the arrays as they are: not copies of them)
+    points, (centres, heights, high) = maxima, every
+    if kept < standing.size:
+        points = maxima[standing]
+        centres, heights, high = (values[standing] for values in every)
+    strong = np.count_nonzero(high)
+    if not strong:
         return 0, 0.0
     retest = False
     if contact_noise is None:
@@ -268,12 +273,14 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
         point_rows, point_cols = points[:, 1], points[:, 0]
     if tied or retest:
         centres, heights, high = _ring_test(padded, place, pad, points, ring_offsets, margin)
-        if not np.count_nonzero(high):
+        strong = np.count_nonzero(high)
+        if not strong:
             return 0, 0.0
     # principal curvatures by central differences one sigma each way, on the points that
-    # stand above their ring
-    heights = heights[high]
-    near = padded.take(centres[high] + near_offsets)
+    # stand above their ring (all of them, mostly: then not copied)
+    if strong < high.size:
+        heights, centres = heights[high], centres[high]
+    near = padded.take(centres + near_offsets)
     near -= heights[:, None]  # E, W, S, N, SE, SW, NE, NW
     fxx, fyy = near[:, 0] + near[:, 1], near[:, 2] + near[:, 3]
     fxy = 0.25 * (near[:, 4] - near[:, 5] - near[:, 6] + near[:, 7])
@@ -282,7 +289,8 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     count = int(np.count_nonzero(peaked))
     if not count:
         return 0, 0.0
-    heights = heights[peaked]
+    if count < peaked.size:
+        heights = heights[peaked]
     if count > 1 and not tied:
         # the mean height sums the high points in the order of their plateaus' labels (the
         # rounding depends on it); labelled only now that few points are left
