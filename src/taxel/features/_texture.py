@@ -85,11 +85,12 @@ def _padded_offsets(
 ) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
     """Padding, flat offsets of the ring and of the curvatures' neighbours, flat place (cached).
 
-    The ring at `radius` has `_RING_POINTS` points; the eight neighbours lie `step` away
-    (E, W, S, N, SE, SW, NE, NW). Offsets are into an image `width` columns wide padded by
-    the returned number of taxels on every side, flattened; each is a read-only (1, n) row.
-    The place is the read-only column (1, row length): points (x, y) times it are their
-    flat indices less the padding's (see `_ring_test`).
+    The ring at `radius` has `_RING_POINTS` points, given after the point itself (offset
+    0); the eight neighbours lie `step` away (E, W, S, N, SE, SW, NE, NW). Offsets are into
+    an image `width` columns wide padded by the returned number of taxels on every side,
+    flattened, from the place of its first taxel (the padding's offset is in them); each is
+    a read-only (1, n) row. The place is the read-only column (1, row length): points
+    (x, y) times it are their flat indices less the padding's (see `_ring_test`).
     """
     angles = np.arange(_RING_POINTS) * (2 * math.pi / _RING_POINTS)
     ring_rows = np.rint(radius * np.sin(angles)).astype(np.intp)
@@ -98,8 +99,9 @@ def _padded_offsets(
     near_cols = np.array([step, -step, 0, 0, step, -step, step, -step], np.intp)
     pad = int(max(np.abs(ring_rows).max(), np.abs(ring_cols).max(), step))
     stride = width + 2 * pad
-    ring = (ring_rows * stride + ring_cols)[None, :]
-    near = (near_rows * stride + near_cols)[None, :]
+    first = pad * (stride + 1)  # the image's first taxel in the padded one
+    ring = np.concatenate(([0], ring_rows * stride + ring_cols))[None, :] + first
+    near = (near_rows * stride + near_cols)[None, :] + first
     place = np.array([[1], [stride]], np.intp)
     ring.flags.writeable = near.flags.writeable = place.flags.writeable = False
     return pad, ring, near, place
@@ -165,23 +167,23 @@ def _peaks(points: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
 def _ring_test(
     padded: np.ndarray,
     place: np.ndarray,
-    pad: int,
     points: np.ndarray,
     ring_offsets: np.ndarray,
     margin: np.float32,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Which points stand `margin` above every point of their ring.
 
-    `padded`: the smoothed image padded by `pad` taxels on every side, flattened, its rows
-    ``place[1, 0]`` long (`place`: see `_padded_offsets`). Returns the points' flat indices
-    into it (as a column), their heights, and the test's answers.
+    `padded`: the smoothed image padded on every side, flattened, its rows ``place[1, 0]``
+    long; `place` and `ring_offsets` (the point, then its ring): see `_padded_offsets`.
+    Returns the points' flat indices less the padding's offset (as a column), their
+    heights, and the test's answers.
     """
-    # (y + pad) stride + x + pad, in one product (whole numbers: exact in any order)
+    # y stride + x, in one product (whole numbers: exact in any order); the point and its
+    # ring in one gather
     centres = points @ place
-    centres += pad * (int(place[1, 0]) + 1)
-    heights = padded.take(centres[:, 0])
-    ring = padded.take(centres + ring_offsets)
-    return centres, heights, heights > np.maximum.reduce(ring, axis=1) + margin
+    values = padded.take(centres + ring_offsets)
+    heights = values[:, 0]
+    return centres, heights, heights > np.maximum.reduce(values[:, 1:], axis=1) + margin
 
 
 def _contact_noise(prepared: Prepared) -> float:
@@ -235,7 +237,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
         radius, max(int(round(sigma)), 1), smooth.shape[1]
     )
     padded = cv2.copyMakeBorder(smooth, pad, pad, pad, pad, cv2.BORDER_REPLICATE).ravel()
-    every = _ring_test(padded, place, pad, maxima, ring_offsets, margin)
+    every = _ring_test(padded, place, maxima, ring_offsets, margin)
     if not np.count_nonzero(every[2]):
         return 0, 0.0  # (no maximum above its ring, as on a ridge: no erosion needed)
     lowest = cv2.erode(smooth, _square(2 * math.ceil(radius) + 1))[maxima[:, 1], maxima[:, 0]]
@@ -272,7 +274,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
         points = _first_of_each(points, cv2.connectedComponents(_peaks(points, smooth.shape))[1])
         point_rows, point_cols = points[:, 1], points[:, 0]
     if tied or retest:
-        centres, heights, high = _ring_test(padded, place, pad, points, ring_offsets, margin)
+        centres, heights, high = _ring_test(padded, place, points, ring_offsets, margin)
         strong = np.count_nonzero(high)
         if not strong:
             return 0, 0.0
