@@ -82,29 +82,35 @@ class Texture:
 @lru_cache(maxsize=64)
 def _padded_offsets(
     radius: float, step: int, width: int
-) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
-    """Padding, flat offsets of the ring and of the curvatures' neighbours, flat place (cached).
+) -> tuple[int, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Padding, flat offsets (ring, curvatures' neighbours, square), flat place (cached).
 
     The ring at `radius` has `_RING_POINTS` points, given after the point itself (offset
-    0); the eight neighbours lie `step` away (E, W, S, N, SE, SW, NE, NW). Offsets are into
-    an image `width` columns wide padded by the returned number of taxels on every side,
-    flattened, from the place of its first taxel (the padding's offset is in them); each is
-    a read-only (1, n) row. The place is the read-only column (1, row length): points
-    (x, y) times it are their flat indices less the padding's (see `_ring_test`).
+    0); the eight neighbours lie `step` away (E, W, S, N, SE, SW, NE, NW); the square is
+    the (2 ceil(radius) + 1)^2 taxels around the point. Offsets are into an image `width`
+    columns wide padded by the returned number of taxels on every side (at least
+    ceil(radius)), flattened, from the place of its first taxel (the padding's offset is in
+    them); each is a read-only (1, n) row. The place is the read-only column (1, row
+    length): points (x, y) times it are their flat indices less the padding's (see
+    `_ring_test`).
     """
     angles = np.arange(_RING_POINTS) * (2 * math.pi / _RING_POINTS)
     ring_rows = np.rint(radius * np.sin(angles)).astype(np.intp)
     ring_cols = np.rint(radius * np.cos(angles)).astype(np.intp)
     near_rows = np.array([0, 0, step, -step, step, step, -step, -step], np.intp)
     near_cols = np.array([step, -step, 0, 0, step, -step, step, -step], np.intp)
-    pad = int(max(np.abs(ring_rows).max(), np.abs(ring_cols).max(), step))
+    half = math.ceil(radius)
+    pad = int(max(np.abs(ring_rows).max(), np.abs(ring_cols).max(), step, half))
     stride = width + 2 * pad
     first = pad * (stride + 1)  # the image's first taxel in the padded one
     ring = np.concatenate(([0], ring_rows * stride + ring_cols))[None, :] + first
     near = (near_rows * stride + near_cols)[None, :] + first
+    across = np.arange(-half, half + 1)
+    square = (across[:, None] * stride + across[None, :]).reshape(1, -1) + first
     place = np.array([[1], [stride]], np.intp)
-    ring.flags.writeable = near.flags.writeable = place.flags.writeable = False
-    return pad, ring, near, place
+    for offsets in (ring, near, square, place):
+        offsets.flags.writeable = False
+    return pad, ring, near, square, place
 
 
 def _square(size: int) -> np.ndarray:
@@ -233,14 +239,20 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     margin = _margin(noise, sigma, prepared.contrast)
     # the ring and the neighbours are read in a copy padded by replication, as clipping
     # each index to the image would, with one flat index per value
-    pad, ring_offsets, near_offsets, place = _padded_offsets(
+    pad, ring_offsets, near_offsets, square_offsets, place = _padded_offsets(
         radius, max(int(round(sigma)), 1), smooth.shape[1]
     )
     padded = cv2.copyMakeBorder(smooth, pad, pad, pad, pad, cv2.BORDER_REPLICATE).ravel()
     every = _ring_test(padded, place, maxima, ring_offsets, margin)
     if not np.count_nonzero(every[2]):
         return 0, 0.0  # (no maximum above its ring, as on a ridge: no erosion needed)
-    lowest = cv2.erode(smooth, _square(2 * math.ceil(radius) + 1))[maxima[:, 1], maxima[:, 0]]
+    # the least value of each maximum's square: the erosion's there. With few maxima, the
+    # least of their squares read in the padded copy, which repeats the border's taxels
+    # (already in each square that reaches past the border: the same least value)
+    if maxima.shape[0] * square_offsets.size <= smooth.size:
+        lowest = np.minimum.reduce(padded.take(every[0] + square_offsets), axis=1)
+    else:
+        lowest = cv2.erode(smooth, _square(2 * math.ceil(radius) + 1))[maxima[:, 1], maxima[:, 0]]
     standing = _standing(every[1], lowest, margin)
     kept = np.count_nonzero(standing)
     if not kept:
