@@ -194,7 +194,7 @@ def _one_region(prepared: Prepared) -> Contact:
     inside, within = image[window], mask[window]
     above = (inside >= np.float32(prepared.low)).view(np.uint8) & within
     raw_count = cv2.countNonZero(above) or int(count)
-    peak = cv2.minMaxLoc(inside, within)[1]
+    peak = prepared.memo["peak"] = cv2.minMaxLoc(inside, within)[1]  # (see `half_region`)
     left, top, width, height = contact_box(prepared)
     border = (
         left == 0 or top == 0 or left + width == mask.shape[1] or top + height == mask.shape[0]

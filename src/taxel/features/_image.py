@@ -143,7 +143,7 @@ class Prepared:
         `cv2.findContours` gives them), when segmentation found them; else None.
     memo : dict
         Intermediates one feature computes and another reuses (image moments, the
-        contact's bounding box and windows, see `taxel.features._window`).
+        contact's peak in `image`, bounding box and windows, see `taxel.features._window`).
     left_out : float
         Largest value of `smooth` out of the contact, or a bound it stays under: `low`
         when no region above `low` was left out of `mask` (+inf when not known).

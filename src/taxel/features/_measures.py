@@ -64,9 +64,12 @@ def half_region(
     """
     # everything is read in the contact's window: `main` is 0 outside it
     window = contact_window(prepared)
+    # with one region, the contact's own peak, if `contact_regions` read it already
+    peak = prepared.memo.get("peak") if main is prepared.mask else None
     image, smooth, main = prepared.image[window], prepared.smooth[window], main[window]
     top, left = window[0].start, window[1].start
-    peak = cv2.minMaxLoc(image, main)[1]
+    if peak is None:
+        peak = cv2.minMaxLoc(image, main)[1]
     region = (image >= 0.5 * (prepared.baseline + peak)).view(np.uint8) & main
     # with one region, the smoothed image's peak is the contact's
     highest = prepared.peak if prepared.n_regions == 1 else cv2.minMaxLoc(smooth, main)[1]
