@@ -34,6 +34,7 @@ import numpy as np
 
 from taxel._validation import check_finite, check_flag, check_range
 from taxel.features._blur import gaussian_blur
+from taxel.features._input import LARGEST_VALUE, as_image
 from taxel.features._noise import (
     RESIDUAL_QUANTUM,
     laplacian_residual,
@@ -77,9 +78,6 @@ _DEFECT_KERNEL = np.ones((3, 3), np.uint8)
 _FILL_8 = 8 | (1 << 8)
 # Integer images of at most this many bits: their Laplacian residual is exact in float32.
 _EXACT_BITS = 16
-# The features compute in float32 (which ends at 3.4e38): values up to 1e15 keep their
-# squares and sums finite, and no tactile image comes near it (1e15 Pa is a petapascal).
-_LARGEST_VALUE = 1e15
 
 
 class Preparation(TypedDict, total=False):
@@ -253,55 +251,6 @@ def _peak_region(
     return None if region[peak_at[1], peak_at[0]] == 0 else (region, left_out)
 
 
-def _as_image(image: Any, name: str = "image") -> np.ndarray:
-    """Validate a 2-D numeric image (the parameter `name`) and return it as float32."""
-    if isinstance(image, np.ma.MaskedArray):
-        # np.asarray would drop the mask and read the values under it
-        raise TypeError(
-            f"`{name}` is a masked array: fill its masked taxels first (`{name}.filled(...)`)"
-        )
-    try:
-        array = np.asarray(image)
-    except ValueError as error:  # a ragged nested list
-        raise ValueError(f"`{name}` must be a 2-D array of numbers: {error}") from None
-    kind = array.dtype.kind
-    if kind not in "biuf":
-        raise TypeError(f"`{name}` must be numeric, got dtype {array.dtype}")
-    if not array.dtype.isnative:  # big-endian data (OpenCV reads the bytes as native)
-        array = array.astype(array.dtype.newbyteorder("="))
-    if array.ndim != 2:
-        raise ValueError(f"`{name}` must be 2-D (rows, cols), got shape {array.shape}")
-    if min(array.shape) < 3:
-        raise ValueError(f"`{name}` must be at least 3x3 taxels, got shape {array.shape}")
-    if (kind == "f" and array.dtype.itemsize >= 4) or array.dtype.itemsize == 8:
-        _check_size(array, name)  # (smaller types cannot reach the limit)
-    image32 = np.ascontiguousarray(array, dtype=np.float32)
-    # integers are finite; a float image is when its sum is (one pass instead of two;
-    # OpenCV's sum, in double, costs less than NumPy's wrapper and cast)
-    if kind == "f" and not math.isfinite(cv2.sumElems(image32)[0]):
-        bad = int(image32.size - np.count_nonzero(np.isfinite(image32)))
-        raise ValueError(f"`{name}` must be finite everywhere, got {bad} NaN or inf value(s)")
-    return image32
-
-
-def _check_size(array: np.ndarray, name: str) -> None:
-    """Raise when a value of `array` (the parameter `name`) lies beyond +-`_LARGEST_VALUE`."""
-    if array.dtype.kind == "f" and array.dtype.itemsize <= 8:
-        low, high = cv2.minMaxLoc(np.ascontiguousarray(array))[:2]  # (one pass, no warning)
-    else:  # 64-bit integers as Python integers (abs of the lowest int64 overflows), long double
-        low, high = array.min().item(), array.max().item()
-    largest = max(-low, high)
-    if largest > _LARGEST_VALUE:
-        finite = np.isfinite(array)
-        if not finite.all():  # an inf, or NaN beside a large value
-            bad = int(array.size - np.count_nonzero(finite))
-            raise ValueError(f"`{name}` must be finite everywhere, got {bad} NaN or inf value(s)")
-        raise ValueError(
-            f"`{name}` values must lie within +-{_LARGEST_VALUE:.0e} (the features compute in "
-            f"float32), got a value of magnitude {float(largest):.3g}"
-        )
-
-
 def removes_defects(
     sensor_or_pitch: Any,
     defects: bool | None,
@@ -394,11 +343,11 @@ def prepare(
     >>> prepared.n_regions, int(prepared.mask.sum())
     (1, 21)
     """
-    given = _as_image(image)
+    given = as_image(image)
     check_image_shape(given.shape, sensor_or_pitch)
     calibrated = check_flag("calibrated", calibrated)
     if reference is not None:
-        tare = _as_image(reference, "reference")
+        tare = as_image(reference, "reference")
         if tare.shape != given.shape:
             raise ValueError(
                 f"`reference` must have the image's shape {given.shape}, got {tare.shape}"
@@ -436,8 +385,8 @@ def prepare(
         level = -_REST_SIGMAS * noise
     if inverted and baseline is not None:
         level = -level
-    if abs(level) > _LARGEST_VALUE:
-        raise ValueError(f"`baseline` must lie within +-{_LARGEST_VALUE:.0e}, got {level:.3g}")
+    if abs(level) > LARGEST_VALUE:
+        raise ValueError(f"`baseline` must lie within +-{LARGEST_VALUE:.0e}, got {level:.3g}")
     contrast = peak - level
     floor = max(_RELATIVE_FLOOR * max(abs(peak), abs(level)), 1e-30)
     low = level + max(K_LOW * noise, F_LOW * contrast)
