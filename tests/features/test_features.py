@@ -274,6 +274,23 @@ def test_a_calibrated_image_s_force_counts_the_load_around_its_contact():
     assert contact.total_force_n == pytest.approx(big.total_force_n + small.total_force_n)
 
 
+def test_a_given_baseline_is_the_pressure_that_carries_no_force():
+    # a calibration's offset of 1 kPa: without a baseline it counts as pressure (0.30 N
+    # over the contact and its catchment); given as the baseline, the forces are the loads'
+    pressure = np.full((32, 32), 1000.0)
+    pressure[10:14, 10:14] += 1e4  # 0.16 N on 1 mm taxels
+    pressure[20:23, 20:23] += 2e4  # 0.18 N
+    offset = find_contact(pressure, 1e-3, calibrated=True)
+    assert offset.total_force_n > 0.4
+    contact = find_contact(pressure, 1e-3, calibrated=True, baseline=1000.0)
+    assert contact.total_force_n == pytest.approx(0.34, rel=1e-9)
+    forces = sorted(region.total_force_n for region in contact.regions)
+    assert forces == pytest.approx([0.16, 0.18], rel=1e-9)
+    assert find_contact(pressure - 1000.0, 1e-3, calibrated=True).total_force_n == pytest.approx(
+        0.34, rel=1e-9
+    )
+
+
 def test_a_calibrated_frame_s_force_is_the_press_s():
     # a sensor's calibrated frame is the pressure felt at the cover's depth, spread beyond
     # the contact: its catchment reaches 3.5 depths (14 taxels on vhdta128); the contact's

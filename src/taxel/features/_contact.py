@@ -257,6 +257,8 @@ def felt_forces(prepared: Prepared) -> np.ndarray:
     """
     reach = catchment_reach(prepared)
     image = prepared.image
+    if prepared.force_level:  # a given baseline: the pressure above it carries the force
+        image = image - np.float32(prepared.force_level)
     square = np.ones((3, 3), np.uint8)
     if prepared.n_regions == 1:
         grown = cv2.dilate(prepared.mask, np.ones((2 * reach + 1,) * 2, np.uint8))

@@ -148,6 +148,9 @@ class Prepared:
     hexagonal : bool
         Whether `image` is a hexagonal array's frame resampled onto its rectangular grid
         (its rows sqrt(3)/2 of its pitch apart).
+    force_level : float
+        The pressure that carries no force [Pa]: a calibrated image's `baseline` where it
+        was given, else 0 (the no-load level of a pressure).
     """
 
     image: np.ndarray
@@ -174,6 +177,7 @@ class Prepared:
     cover_depth: float = 0.0
     left_out: float = math.inf
     hexagonal: bool = False
+    force_level: float = 0.0
 
     @property
     def present(self) -> bool:
@@ -309,7 +313,8 @@ def prepare(
         (`reference`) image has a known no-load level, 0: when its smoothed minimum stands
         clearly above it (11 noise sigmas: no taxel at rest), the baseline is 3.5 sigmas
         below 0, where a background's minimum usually lies. A raw frame cannot tell: give
-        it a `reference`.
+        it a `reference`. Given for a calibrated image, it is the pressure that carries no
+        force: the forces count the pressure above it (an uncorrected offset).
     defects : bool, optional
         Remove bright defects narrower than 3 taxels (glass scratches, hot pixels) with a
         3 x 3 grey-level opening. By default only in an uncalibrated image (a raw frame)
@@ -395,6 +400,7 @@ def prepare(
         "image": values, "smooth": smooth, "pitch": pitch, "baseline": level, "noise": noise,
         "contrast": contrast, "raw_noise": raw_noise, "low": low, "high": high,
         "calibrated": calibrated, "peak": peak, "defects_removed": cleaned,
+        "force_level": level if calibrated and baseline is not None else 0.0,
         "residual": residual, "residual_step": step, "residual_quantum": quantum,
         "blur": cover_blur(sensor_or_pitch),
         "cover_depth": cover_depth(sensor_or_pitch) or 0.0, "hexagonal": values is not given,
