@@ -166,6 +166,23 @@ def test_sixteen_by_sixteen_washer_cut_by_the_border_is_a_face(position):
     assert shape.rule == "face with a curved free outline"
 
 
+@pytest.mark.parametrize(
+    ("length", "radius", "force", "angle"),
+    [(16e-3, 5e-3, 5.0, 0.3), (14e-3, 4e-3, 3.0, 1.1), (18e-3, 6e-3, 8.0, 2.0)],
+)
+def test_sixteen_by_sixteen_short_cylinder_is_a_line(length, radius, force, angle):
+    # the cover's 4 mm blur widens a 14-18 mm cylinder's region on the 2 mm array to nearly
+    # its length (a compact face, or a face with a closed outline); its signal, the blur
+    # taken out, is a band's
+    sensor = replace(make_sensor("resistive16"), oversampling=4)
+    cylinder = {"radius": radius, "length": length}
+    frame = _press(sensor, "cylinder", force, position=(1e-3, -1e-3), angle=angle, **cylinder)
+    shape = extract(frame.raw, sensor).shape
+    assert (shape.contact_type, shape.rule) == ("line", "straight band")
+    error = abs((shape.line.angle_rad - angle + math.pi / 2) % math.pi - math.pi / 2)
+    assert math.degrees(error) < 1.0
+
+
 @pytest.mark.parametrize("pitch", [2e-3, np.float64(2e-3), np.array([2e-3, 2e-3])])
 def test_a_sensor_whose_pitch_is_one_number_is_a_sensor(pitch):
     # a duck-typed sensor giving its pitch as one number (as a bare pitch may be) failed in

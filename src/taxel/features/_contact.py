@@ -21,6 +21,7 @@ __all__ = [
     "felt_forces",
     "find_contact",
     "region_moments",
+    "signal_moments",
 ]
 
 # a contact's load is felt this many cover depths around it (2 % of a point load's beyond)
@@ -159,21 +160,37 @@ def region_moments(prepared: Prepared, mask: np.ndarray) -> tuple[dict, dict]:
     return binary, weighted
 
 
-def _signal_centre(prepared: Prepared, mask: np.ndarray) -> tuple[float, float] | None:
-    """Centroid (row, col) of the unsmoothed signal above the baseline over `mask`, or None.
+def signal_moments(prepared: Prepared, mask: np.ndarray) -> dict[str, float]:
+    """Image moments of the unsmoothed signal above the baseline over `mask` (internal).
 
-    Read in the contact window's rows (whole rows: the columns need no shift); taxels below
-    the baseline weigh 0, so the centroid lies among the mask's taxels. None when no taxel
-    is above it.
+    Read in the contact window's rows (whole rows: the columns need no shift), m01 moved
+    down to the image's origin; taxels below the baseline weigh 0. With one region, kept in
+    ``prepared.memo``.
     """
+    one = prepared.n_regions == 1 and mask is prepared.mask
+    if one and "signal moments" in prepared.memo:
+        return prepared.memo["signal moments"]
     rows = contact_window(prepared)[0]
     signal = prepared.image[rows] - np.float32(prepared.baseline)
     np.maximum(signal, 0.0, out=signal)  # a taxel's noise below the baseline weighs nothing
     signal *= mask[rows]
     moments = cv2.moments(signal)
+    moments["m01"] += rows.start * moments["m00"]
+    if one:
+        prepared.memo["signal moments"] = moments
+    return moments
+
+
+def _signal_centre(prepared: Prepared, mask: np.ndarray) -> tuple[float, float] | None:
+    """Centroid (row, col) of the unsmoothed signal above the baseline over `mask`, or None.
+
+    The taxels below the baseline weigh 0, so the centroid lies among the mask's taxels;
+    None when no taxel is above it.
+    """
+    moments = signal_moments(prepared, mask)
     if not moments["m00"] > 0:
         return None
-    return moments["m01"] / moments["m00"] + rows.start, moments["m10"] / moments["m00"]
+    return moments["m01"] / moments["m00"], moments["m10"] / moments["m00"]
 
 
 def _one_region(prepared: Prepared) -> Contact:

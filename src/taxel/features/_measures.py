@@ -7,7 +7,7 @@ import math
 import cv2
 import numpy as np
 
-from taxel.features._contact import Contact, region_moments
+from taxel.features._contact import Contact, region_moments, signal_moments
 from taxel.features._fitting import (
     CircleFit,
     LineFit,
@@ -23,6 +23,7 @@ __all__ = [
     "band_fits",
     "half_region",
     "region_measures",
+    "signal_elongation",
     "three_lobes",
     "to_metres_circle",
     "to_metres_line",
@@ -31,6 +32,8 @@ __all__ = [
 # A saturated image is flat-topped: its top 10 % covers at least a third of its
 # half-maximum area (a Gaussian's covers 15 %, a blurred dome's ~20-25 %).
 _FLAT_TOP = 1.0 / 3.0
+# A Gaussian's half-maximum width is 2 sqrt(2 ln 2) = 2.355 of its sigma.
+_FWHM_PER_SIGMA = 2.0 * math.sqrt(2.0 * math.log(2.0))
 # A band's taxels lie within half its thickness of its centre line or arc. Taxels farther
 # than 0.75 thicknesses from the fitted curve (half a thickness, plus as much again for the
 # first fit's own error) are a spur: the remains of a glass scratch or a noise ridge that
@@ -84,6 +87,27 @@ def half_region(
     root = math.hypot((var_x - var_y) / 2, moments["mu11"] / count)
     flat = top_area >= _FLAT_TOP * max(half_area, 1)
     return region, (left, top), 4.0 * math.sqrt((var_x + var_y) / 2 + root), flat, moments
+
+
+def signal_elongation(prepared: Prepared, main: np.ndarray) -> float:
+    """Length over width of the region's unsmoothed signal, the cover's blur taken out.
+
+    The signal's equivalent ellipse (its weighted second moments) is the pressure's
+    convolved with the cover's response and sampled by the taxels, whose variances add:
+    each axis loses the blur's (a Gaussian of the blur's half-maximum width) and a taxel's
+    (1/12). What is left across is at least a taxel's own (1/12): the narrowest width the
+    array tells. 0 when the region carries no signal.
+    """
+    moments = signal_moments(prepared, main)
+    total = moments["m00"]
+    if not total > 0:
+        return 0.0
+    xx, yy, xy = moments["mu20"] / total, moments["mu02"] / total, moments["mu11"] / total
+    spread = math.hypot((xx - yy) / 2, xy)
+    blurred = (prepared.blur / prepared.mean_pitch / _FWHM_PER_SIGMA) ** 2 + 1 / 12
+    along = (xx + yy) / 2 + spread - blurred
+    across = max((xx + yy) / 2 - spread - blurred, 1 / 12)
+    return math.sqrt(max(along, 0.0) / across)
 
 
 def band_fits(

@@ -11,8 +11,9 @@ surface   a texture (foam, rasp, screen) or a     3 or more regions of >= 5 % of
           multi-point grip: many separate high    or >= 3 high points in the contact, or
           points or a perforated face             >= 2 holes
 surface   a face with a hole or a slot            a hole or a slot in the contact
-line      a straight edge pressed in (cylinder    a band (length >= 1.5 widths) whose centre
-          side, box edge): a long narrow band     line is straight
+line      a straight edge pressed in (cylinder    a band (length >= 1.5 widths, or a signal
+          side, box edge): a long narrow band     4 times as long as wide without the
+                                                  cover's blur) whose centre line is straight
 arc       a curved edge (drink-can rim)           a band whose centre line is a circle arc
                                                   bowing >= 2 taxels over its length, and
                                                   thinner than half its radius
@@ -76,6 +77,7 @@ from taxel.features._measures import (
     band_fits,
     half_region,
     region_measures,
+    signal_elongation,
     three_lobes,
     to_metres_circle,
     to_metres_line,
@@ -117,6 +119,12 @@ _MANY_HOLES = 2
 # triangle (~1); only a body with an edge, a line of lowest points, makes a contact half
 # again as long as it is wide (a cylinder on its side: its length over its contact width).
 _BAND = 1.5
+# ... or a region whose signal is 4 times as long as it is wide once the cover's blur is
+# taken out (`signal_elongation`): on a coarse array the blur widens a short edge's region
+# to nearly its length (a 12-25 mm cylinder on a 2 mm pitch under a 4 mm blur). A round
+# body's signal stays under 2 (3 for a pen under noise on 16 x 16); 4 was the better of
+# 3 and 4 on the features benchmark (the same on vhdta128, where the regions are long).
+_SIGNAL_BAND = 4.0
 # Compact: equivalent-ellipse axes within 2:1.
 _COMPACT_RATIO = 0.5
 _POINT_SIZE = 2.5e-3  # [m]
@@ -381,7 +389,7 @@ def shape_core(
         return result("surface", 1.0, 0.0, "several holes (perforated face)", 0.0)
     if n_holes or n_slots:
         return result("surface", 1.0, 0.0, "face with a hole or a slot", 0.0)
-    if elongation >= _BAND:
+    if elongation >= _BAND or signal_elongation(prepared, main) >= _SIGNAL_BAND:
         line, circle, length = band_fits(prepared, main, thickness)
         bow = sagitta(circle.radius_m, length)
         if bow >= _MIN_SAGITTA and circle.rms_m < line.rms_m:
