@@ -35,6 +35,15 @@ def median_time(call: Callable[[], object], repeats: int) -> float:
     return float(np.median(times))
 
 
+def dct_probe() -> float:
+    """Median CPU time of a bare 128 x 128 DCT [s]: how fast the shared machine is now.
+
+    About 115 us when the machine is quiet; the speed benchmarks time one before each round.
+    """
+    image = np.random.default_rng(0).random((128, 128))
+    return median_time(lambda: dctn(image, type=2, norm="ortho"), 2000)
+
+
 @dataclass
 class _Case:
     name: str
@@ -107,8 +116,7 @@ class SpeedRounds:
 
     def round(self) -> None:
         """Time every case once more, and a bare 128 x 128 DCT for the machine's speed."""
-        image = np.random.default_rng(0).random((128, 128))
-        self.dct_rounds.append(median_time(lambda: dctn(image, type=2, norm="ortho"), 2000))
+        self.dct_rounds.append(dct_probe())
         for case in self.cases:
             case.rounds.append(median_time(case.call, case.repeats) / case.frames)
 
