@@ -464,7 +464,7 @@ def test_fits_reference_values():
         fit_circle([[0.0, 0.0], [1.0, 1.0]])
 
 
-@pytest.mark.parametrize("scale", [1e-100, 1e-80, 1e-6, 1e12, 1e50, 1e155, 1e300])
+@pytest.mark.parametrize("scale", [1e-100, 1e-80, 1e-6, 1e12, 1e50, 1e155, 1e300, 1e307])
 def test_fits_hold_at_any_scale(scale):
     # the fits squared raw coordinates: at 1e155 they overflowed (a warning, or a NaN line);
     # from 1e50 up and at 1e-100 an arc read as collinear; at 1e-80 its radius read 2.973
