@@ -148,3 +148,30 @@ def test_the_scratch_pattern_is_drawn_once_per_glass_and_shape():
     assert sensor.scratches((32, 32)) is first  # cached: a frame does not redraw the glass
     assert not first.flags.writeable
     assert np.array_equal(first, glass_scratches((32, 32), rng=7, count=4))
+
+
+def test_keep_sign_mirrors_the_law_below_the_unloaded_level():
+    sensor = FtirTransducer(scratch_count=0)
+    levels = np.arange(256.0).reshape(16, 16)
+    plain = sensor.invert(levels)
+    signed = sensor.invert(levels, keep_sign=True)
+    above = levels >= sensor.dark_level
+    assert np.array_equal(signed[above], plain[above])
+    # erfinv is odd: a level d below the dark one reads minus the level d above
+    for d in (1.0, 5.0, 20.0):
+        low = sensor.invert(np.full((1, 1), sensor.dark_level - d), keep_sign=True)
+        high = sensor.invert(np.full((1, 1), sensor.dark_level + d))
+        assert low[0, 0] == pytest.approx(-high[0, 0], rel=1e-12)
+    assert np.all(plain[~above] == 0.0) and np.all(signed[~above] < 0.0)
+
+
+def test_keep_sign_lets_the_noise_of_an_unloaded_frame_average_out():
+    sensor = FtirTransducer()
+    frames = [sensor.respond(np.zeros((128, 128)), rng=seed) for seed in range(4)]
+    pressure = np.stack([sensor.invert(frame, keep_sign=True) for frame in frames])
+    clipped = np.stack([sensor.invert(frame) for frame in frames])
+    spread = pressure.std() / math.sqrt(pressure.size)
+    assert abs(pressure.mean()) < 4 * spread  # unbiased
+    assert clipped.mean() > 50 * spread  # the noise above the level only: biased up
+    with pytest.raises(TypeError, match="keep_sign"):
+        sensor.invert(frames[0], keep_sign="yes")

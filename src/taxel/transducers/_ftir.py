@@ -19,7 +19,13 @@ from typing import Any, ClassVar
 import numpy as np
 from scipy import special
 
-from taxel._validation import as_finite_array, check_integer, check_positive, check_range
+from taxel._validation import (
+    as_finite_array,
+    check_flag,
+    check_integer,
+    check_positive,
+    check_range,
+)
 from taxel.transducers._camera import camera_image, glass_scratches
 
 __all__ = [
@@ -344,14 +350,33 @@ class FtirTransducer:
             fraction = fraction + self.scratches(pressure.shape)
         return camera_image(fraction, rng=rng, **self._camera())
 
-    def invert(self, signal: Any, /, *, subtract_scratches: bool = True) -> np.ndarray:
+    def invert(
+        self, signal: Any, /, *, subtract_scratches: bool = True, keep_sign: bool = False
+    ) -> np.ndarray:
         """Pressure image [Pa] from a camera frame [DN].
 
         Textured: the contact fraction read off the grey level, clipped to [0, saturation],
         so saturated pixels return `saturation_pressure`. Flat: 0 where there is no contact
         and NaN where there is, since a binary image carries no pressure. The known scratch
         pattern is subtracted first (a flat-field correction) unless told otherwise.
+
+        `keep_sign` (textured only): a grey level below the unloaded one reads as a negative
+        pressure, the law mirrored (erfinv is odd), instead of 0. Noise about the unloaded
+        level then averages to 0 over the background rather than adding a positive bias,
+        which sums and centroids over many background pixels need.
+
+        Examples
+        --------
+        >>> ftir = FtirTransducer()
+        >>> frame = np.full((2, 2), ftir.dark_level - 2.0)  # below the unloaded level
+        >>> ftir.invert(frame, subtract_scratches=False).tolist()
+        [[0.0, 0.0], [0.0, 0.0]]
+        >>> signed = ftir.invert(frame, subtract_scratches=False, keep_sign=True)
+        >>> mirrored = ftir.invert(frame + 4.0, subtract_scratches=False)
+        >>> bool(np.allclose(signed, -mirrored)), bool(signed[0, 0] < 0)
+        (True, True)
         """
+        keep_sign = check_flag("keep_sign", keep_sign)
         image = as_finite_array("signal", signal, ndim=2)
         fraction = (image - self.dark_level) / (self.bright_level - self.dark_level)
         if subtract_scratches and self.scratch_count:
@@ -359,4 +384,6 @@ class FtirTransducer:
         if not self.textured:
             return np.where(fraction > 0.5, np.nan, 0.0)
         top = 1.0 - 0.5 / (self.bright_level - self.dark_level)
+        if keep_sign:
+            return self._pressure(np.clip(np.abs(fraction), 0.0, top)) * np.sign(fraction)
         return self._pressure(np.clip(fraction, 0.0, top))
