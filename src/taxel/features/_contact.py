@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any, Unpack
 
 import cv2
@@ -10,6 +11,7 @@ import numpy as np
 
 from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._moments import binary_moments
+from taxel.features._pressure_centre import pressure_centre
 from taxel.features._record import record
 from taxel.features._window import contact_box, contact_window
 
@@ -248,9 +250,24 @@ def contact_regions(prepared: Prepared) -> Contact:
     n = prepared.n_regions
     if n == 0:
         return Contact(False, None, None, 0.0, None, 0.0, 0.0, 0.0, ())
-    if n == 1:
-        return _one_region(prepared)
-    return _several_regions(prepared)
+    contact = _one_region(prepared) if n == 1 else _several_regions(prepared)
+    if prepared.read_back is not None:
+        centre = pressure_centre(prepared, prepared.read_back)
+        if centre is not None:
+            return _centred(contact, centre, prepared)
+    return contact
+
+
+def _centred(contact: Contact, centre: tuple[float, float], prepared: Prepared) -> Contact:
+    """`contact` with its centre of pressure at `centre` (row, col); one region's too."""
+    rows, cols = prepared.mask.shape
+    row_pitch, col_pitch = prepared.pitch
+    row, col = centre
+    centroid_m = ((col - (cols - 1) / 2) * col_pitch, (row - (rows - 1) / 2) * row_pitch)
+    regions = contact.regions
+    if len(regions) == 1:
+        regions = (replace(regions[0], centroid_index=centre, centroid_m=centroid_m),)
+    return replace(contact, centroid_index=centre, centroid_m=centroid_m, regions=regions)
 
 
 def catchment_reach(prepared: Prepared) -> int:

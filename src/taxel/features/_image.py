@@ -41,6 +41,7 @@ from taxel.features._noise import (
     smoothing_gain,
     taxel_noise,
 )
+from taxel.features._response import ReadBack, read_back
 from taxel.features._sensor import (
     check_image_shape,
     cover_blur,
@@ -151,6 +152,10 @@ class Prepared:
     force_level : float
         The pressure that carries no force [Pa]: a calibrated image's `baseline` where it
         was given, else 0 (the no-load level of a pressure).
+    read_back : ReadBack or None
+        The raw frame and the transducer that reads it back to pressure, when the sensor
+        given has one (see `taxel.features._response`): the contact's centre of pressure
+        is then read through it.
     """
 
     image: np.ndarray
@@ -178,6 +183,7 @@ class Prepared:
     left_out: float = math.inf
     hexagonal: bool = False
     force_level: float = 0.0
+    read_back: ReadBack | None = None
 
     @property
     def present(self) -> bool:
@@ -366,7 +372,8 @@ def prepare(
     # two of 16 bits differ in 17, which float32 still holds exactly
     dtypes = [np.asarray(array).dtype for array in (image, reference) if array is not None]
     values = hexagonal_resampled(given, sensor_or_pitch)
-    integers = values is given and all(dtype.kind in "biu" for dtype in dtypes)
+    resampled = values is not given
+    integers = not resampled and all(dtype.kind in "biu" for dtype in dtypes)
     whole = integers and max(dtype.itemsize for dtype in dtypes) * 8 <= _EXACT_BITS
     pitch = pitch_pair(sensor_or_pitch)
     smoothing = check_range("smoothing", smoothing, 0.0, 20.0)
@@ -403,7 +410,11 @@ def prepare(
         "force_level": level if calibrated and baseline is not None else 0.0,
         "residual": residual, "residual_step": step, "residual_quantum": quantum,
         "blur": cover_blur(sensor_or_pitch),
-        "cover_depth": cover_depth(sensor_or_pitch) or 0.0, "hexagonal": values is not given,
+        "cover_depth": cover_depth(sensor_or_pitch) or 0.0, "hexagonal": resampled,
+        "read_back": None if resampled else read_back(
+            sensor_or_pitch, np.asarray(image), calibrated=calibrated,
+            referenced=reference is not None,
+        ),
     }  # fmt: skip
     if contrast <= max(K_HIGH * noise, floor):
         empty = np.zeros(values.shape, np.uint8)

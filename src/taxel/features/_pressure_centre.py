@@ -1,0 +1,146 @@
+"""The contact's centre of pressure through the sensor's response (internal).
+
+A texture or a plate presses lightly over much of the array, where the contact mask, cut
+at a threshold, does not reach, and the cover spreads every load beyond it: a centre
+weighted over the mask alone misses that pressure. A window grown around the contact takes
+it in, and takes in the noise of every background taxel too. The window is chosen by
+Lepski's rule (Lepski, Mammen & Spokoiny, Ann. Statist. 25, 1997), the usual answer when
+an estimate's bias is unknown but its noise is: going from the largest window down, a
+smaller one is kept only while its centre agrees with every larger window's within their
+noise; where it does not, the larger windows have seen pressure the smaller one missed.
+The pressure is the frame read back through the sensor's response (`_response`), signed,
+so that the background's noise averages out instead of pulling the centre towards the
+window's middle.
+"""
+
+from __future__ import annotations
+
+import math
+
+import cv2
+import numpy as np
+
+from taxel.features._image import Prepared
+from taxel.features._moments import binary_moments
+from taxel.features._response import ReadBack, below_unloaded, noise_pressure, signed_pressure
+from taxel.features._window import contact_box, contact_window
+
+__all__ = ["pressure_centre"]
+
+# The windows: the contact mask, then its bounding box grown by each of these [taxels]
+# (each doubles the last), then the whole array
+_RADII = (0, 2, 4, 8, 16, 32)
+# Two centres agree when they lie within this many noise sigmas of their difference (the
+# RMS over both axes of each centre's noise, added in quadrature)
+_AGREE = 3.0
+
+
+def _index_sums(first: np.ndarray, stop: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Sums of the indices first..stop - 1 and of their squares (element-wise)."""
+
+    def squares(n: np.ndarray) -> np.ndarray:  # 0^2 + ... + (n - 1)^2
+        return (n - 1) * n * (2 * n - 1) / 6
+
+    return (first + stop - 1) * (stop - first) / 2, squares(stop) - squares(first)
+
+
+def _windows(prepared: Prepared) -> list[tuple[int, int, int, int]]:
+    """The contact's bounding box grown by each of `_RADII` taxels, clipped, then the array."""
+    left, top, width, height = contact_box(prepared)
+    rows, cols = prepared.mask.shape
+    boxes: list[tuple[int, int, int, int]] = []
+    for grow in _RADII:
+        box = (
+            max(top - grow, 0),
+            max(left - grow, 0),
+            min(top + height + grow, rows),
+            min(left + width + grow, cols),
+        )
+        if not boxes or box != boxes[-1]:
+            boxes.append(box)
+    if boxes[-1] != (0, 0, rows, cols):
+        boxes.append((0, 0, rows, cols))
+    return boxes
+
+
+def _mask_sums(prepared: Prepared, pressure: np.ndarray) -> tuple[float, ...]:
+    """The window sums of `pressure_centre` over the contact mask itself."""
+    mask = prepared.mask
+    rows, cols = contact_window(prepared)
+    count = binary_moments(mask[rows, cols], rows.start, cols.start)
+    weighted = cv2.moments(pressure[rows] * mask[rows])
+    w_y = weighted["m01"] + rows.start * weighted["m00"]
+    return (
+        weighted["m00"], w_y, weighted["m10"],
+        count["m00"], count["m01"], count["m10"], count["m02"] + count["m20"],
+    )  # fmt: skip
+
+
+def _first_moment(cumulative: np.ndarray, first: np.ndarray, stop: np.ndarray) -> np.ndarray:
+    """Sum of i (c[i + 1] - c[i]) over i = first..stop - 1, down each column (by parts)."""
+    columns = np.arange(cumulative.shape[1])
+    running = np.zeros((cumulative.shape[0] + 1, cumulative.shape[1]))
+    np.cumsum(cumulative, axis=0, out=running[1:])  # running[i]: the sum of c[:i]
+    return (
+        (stop - 1) * cumulative[stop, columns]
+        - first * cumulative[first, columns]
+        - (running[stop, columns] - running[first + 1, columns])
+    )
+
+
+def _box_sums(pressure: np.ndarray, boxes: list[tuple[int, int, int, int]]) -> np.ndarray:
+    """The window sums of `pressure_centre` over each box, one box a column.
+
+    From the pressure's integral image alone: a box's pressure by rows is the difference
+    of two of its columns, whose first moment is then taken by parts (`_first_moment`),
+    and the same by columns.
+    """
+    integral = cv2.integral(pressure, sdepth=cv2.CV_64F)
+    r0, c0, r1, c1 = np.array(boxes).T
+    total = integral[r1, c1] - integral[r0, c1] - integral[r1, c0] + integral[r0, c0]
+    w_y = _first_moment(integral[:, c1] - integral[:, c0], r0, r1)
+    w_x = _first_moment((integral[r1] - integral[r0]).T, c0, c1)
+    n_r, n_c = r1 - r0, c1 - c0
+    (s_r, s_rr), (s_c, s_cc) = _index_sums(r0, r1), _index_sums(c0, c1)
+    return np.vstack((total, w_y, w_x, n_r * n_c, n_c * s_r, n_r * s_c, n_c * s_rr + n_r * s_cc))
+
+
+def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] | None:
+    """Centre of pressure (row, col) of the contact through the sensor's response, or None.
+
+    The signed pressure (`signed_pressure`) is weighted over each window: the contact mask,
+    its bounding box grown by each of `_RADII` taxels, and the whole array. A window's
+    centre moves with the noise by sigma times the root of the window's sum of squared
+    distances to the centre, over its total pressure (RMS over both axes). The smallest
+    window is kept whose centre lies within `_AGREE` times the noise of every larger
+    window's (Lepski's rule, see the module notes). Windows whose pressure sums to nothing,
+    or whose centre falls off the array, are passed over; None when every window is, or
+    when the frame's background is darker than the sensor's unloaded level
+    (`below_unloaded`): the frame is then not the model's, and the image is weighed.
+    """
+    outside = (prepared.mask == 0).view(np.uint8)
+    if below_unloaded(read, outside):
+        return None
+    pressure = signed_pressure(read)
+    candidates = [_mask_sums(prepared, pressure)]
+    candidates += _box_sums(pressure, _windows(prepared)).T.tolist()
+    noise = noise_pressure(read, prepared.raw_noise)
+    centres, moved = [], []
+    rows, cols = pressure.shape
+    for total, w_y, w_x, n, s_y, s_x, s_sq in candidates:
+        if not total > 0:
+            continue
+        c_y, c_x = w_y / total, w_x / total
+        if not (0.0 <= c_y <= rows - 1 and 0.0 <= c_x <= cols - 1):
+            continue
+        spread = s_sq - 2.0 * (c_y * s_y + c_x * s_x) + n * (c_y**2 + c_x**2)
+        centres.append((c_y, c_x))
+        moved.append(noise * math.sqrt(max(spread, 0.0)) / total)
+    # Lepski's rule: the smallest window whose centre every larger window's agrees with
+    for j, (c_y, c_x) in enumerate(centres):
+        if all(
+            math.hypot(c_y - o_y, c_x - o_x) <= _AGREE * math.hypot(moved[j], moved[k])
+            for k, (o_y, o_x) in enumerate(centres[j + 1 :], j + 1)
+        ):
+            return c_y, c_x
+    return None

@@ -1,0 +1,117 @@
+"""The centre of pressure read through an FTIR sensor's response (`features._pressure_centre`)."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from taxel.features import extract, prepare
+from taxel.features._pressure_centre import _box_sums
+from taxel.features._response import read_back, signed_pressure
+from taxel.mechanics import make_indenter
+from taxel.sensor import ArrayGeometry, make_sensor
+
+
+@pytest.fixture(scope="module")
+def vhdta():
+    return make_sensor("vhdta128")
+
+
+def _pressed(sensor, name, force, position, seed=5):
+    frame = sensor.press(
+        make_indenter(name), normal_force=force, position=position, angle=0.3, rng=seed
+    )
+    x, y = sensor.load_grid.coordinates()
+    pressure = frame.contact.pressure
+    truth = np.array([(pressure * x).sum(), (pressure * y).sum()]) / pressure.sum()
+    return frame.raw, truth
+
+
+def _error(centroid_m, truth, sensor):
+    return float(np.linalg.norm(np.subtract(centroid_m, truth)) / sensor.taxel_pitch[0])
+
+
+def test_the_table_read_back_is_the_transducers_inverse(vhdta):
+    raw, _ = _pressed(vhdta, "punch", 5.0, (1e-3, 0.0))
+    wanted = vhdta.transducer.invert(raw, keep_sign=True)
+    fast = signed_pressure(read_back(vhdta, raw, calibrated=False, referenced=False))
+    assert fast.dtype == np.float32
+    np.testing.assert_allclose(fast, wanted, rtol=1e-6, atol=1e-3)
+    assert np.any(fast < 0) and np.any(fast > 1e4)  # noise below the level, contact above
+    as_float = read_back(vhdta, raw.astype(np.float64), calibrated=False, referenced=False)
+    np.testing.assert_allclose(signed_pressure(as_float), wanted, rtol=1e-6, atol=1e-3)
+
+
+def test_a_texture_is_centred_on_its_pressure_not_on_its_image(vhdta):
+    # foam presses lightly over much of the array, beyond the contact mask, and its
+    # grey level saturates where it presses hard
+    raw, truth = _pressed(vhdta, "foam", 20.0, (1e-3, -2e-3))
+    through = extract(raw, vhdta).contact
+    weighed = extract(raw, vhdta.taxel_pitch, defects=True).contact  # the image weighed
+    assert _error(through.centroid_m, truth, vhdta) < 0.2  # 0.09 taxel
+    assert _error(weighed.centroid_m, truth, vhdta) > 1.0  # 1.15 taxel
+    # with 4 grey levels of noise (4 % of the span) every window past the mask is noisier:
+    # 0.55-1.05 taxel on these draws, still closer than the image's 0.78-1.54
+    through, weighed = [], []
+    for seed in range(4):
+        noise = np.random.default_rng(seed).normal(0.0, 4.0, raw.shape)
+        noisy = np.clip(raw + noise, 0, 255).round().astype(np.uint8)
+        through.append(_error(extract(noisy, vhdta).contact.centroid_m, truth, vhdta))
+        image = extract(noisy, vhdta.taxel_pitch, defects=True).contact.centroid_m
+        weighed.append(_error(image, truth, vhdta))
+    assert np.mean(through) < 0.8 * np.mean(weighed)
+
+
+def test_a_small_contact_in_noise_keeps_to_its_mask(vhdta):
+    # a pen tip: every window past the mask adds noise and no pressure, and Lepski's rule
+    # keeps the mask; with a region, its centroid is the contact's
+    raw, truth = _pressed(vhdta, "pen", 1.0, (2e-3, 1e-3))
+    noisy = np.clip(raw + np.random.default_rng(2).normal(0.0, 4.0, raw.shape), 0, 255)
+    contact = extract(noisy.round().astype(np.uint8), vhdta).contact
+    assert _error(contact.centroid_m, truth, vhdta) < 0.1
+    assert contact.regions[0].centroid_m == contact.centroid_m
+
+
+def test_frames_the_model_does_not_read_back_weigh_the_image(vhdta):
+    raw, _ = _pressed(vhdta, "punch", 5.0, (1e-3, 0.0))
+    assert prepare(raw, vhdta).read_back is not None
+    assert prepare(raw, vhdta, calibrated=True).read_back is None
+    assert prepare(raw, vhdta, reference=np.full(raw.shape, 24, np.uint8)).read_back is None
+    assert prepare(raw, vhdta.taxel_pitch).read_back is None
+    resistive = make_sensor("resistive16")
+    assert prepare(np.zeros(resistive.shape), resistive).read_back is None
+    flat = replace(vhdta, transducer=replace(vhdta.transducer, textured=False))
+    assert prepare(raw, flat).read_back is None
+    # a background darker than the camera's unloaded level: not the model's frame
+    frame = np.full((128, 128), 20, np.uint8)
+    frame[40, 30:90] = 200
+    with_sensor = extract(frame, vhdta, defects=False).contact
+    image_only = extract(frame, vhdta.taxel_pitch, defects=False).contact
+    assert with_sensor.centroid_m == image_only.centroid_m
+    assert with_sensor.centroid_index == pytest.approx((40.0, 59.5), abs=0.01)
+
+
+def test_window_sums_from_the_integral_image():
+    rng = np.random.default_rng(1)
+    pressure = rng.normal(size=(20, 30)).astype(np.float32)
+    boxes = [(0, 0, 20, 30), (3, 4, 9, 17), (5, 5, 6, 6), (0, 2, 20, 3)]
+    sums = _box_sums(pressure, boxes)
+    y, x = np.indices(pressure.shape)
+    for column, (r0, c0, r1, c1) in enumerate(boxes):
+        w, yy, xx = (a[r0:r1, c0:c1] for a in (pressure.astype(float), y, x))
+        wanted = [w.sum(), (w * yy).sum(), (w * xx).sum(), w.size, yy.sum(), xx.sum()]
+        wanted.append((yy**2 + xx**2).sum())
+        np.testing.assert_allclose(sums[:, column], wanted, rtol=1e-9, atol=1e-9)
+
+
+def test_oblong_taxels_are_refused_after_the_defects_are_removed(vhdta):
+    # the defect removal once marked every opened frame as a resampled hexagonal one,
+    # which let oblong taxels through to the contact type
+    oblong = replace(
+        vhdta, geometry=ArrayGeometry(128, 128, (0.25e-3, 0.3e-3), layout="rectangular")
+    )
+    raw, _ = _pressed(vhdta, "punch", 5.0, (1e-3, 0.0))
+    prepared = prepare(raw, oblong)
+    assert prepared.defects_removed and not prepared.hexagonal
+    with pytest.raises(ValueError, match="square taxels for the contact type"):
+        extract(raw, oblong)
