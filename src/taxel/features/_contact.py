@@ -41,7 +41,8 @@ class ContactRegion:
         Centre of pressure as (row, col) taxel indices: the centroid weighted by the
         unsmoothed signal above the baseline (the smoothing mirrors the image at the
         array's border, which pulled a contact there inward: by 0.3 taxel at the default
-        smoothing, more with more).
+        smoothing, more with more). Of the only region, given a sensor whose raw frame
+        reads back to pressure, the contact's (see `Contact`).
     centroid_m : (float, float)
         The same point (x, y) in the sensor frame [m].
     area_taxels : int
@@ -84,6 +85,10 @@ class Contact:
     present : bool
     centroid_index, centroid_m : (float, float) or None
         Centre of pressure of all regions together (taxel indices; sensor frame [m]).
+        Given a sensor whose raw frame its transducer reads back to pressure (an FTIR
+        camera's, `taxel.transducers.FtirTransducer`), that pressure's centre over the
+        contact and as far around it as the noise allows (see `find_contact`); else
+        the regions' signal-weighted centroids together.
     area_m2 : float
         Total contact area [m^2].
     total_force_n : float or None
@@ -439,6 +444,16 @@ def find_contact(
     set (8-neighbours) above a low threshold that holds at least one taxel above a high
     threshold. Both thresholds are the larger of a multiple of the noise sigma and a
     fraction of the contrast (see `taxel.features.prepare`).
+
+    Given a sensor whose raw frame its transducer reads back to pressure (a textured
+    FTIR camera behind an ideal readout, on a frame neither calibrated nor tared), the
+    contact's centre of pressure is that pressure's, not the image's: the grey level
+    follows the real contact area, which saturates, and light contact lies beyond the
+    mask. The frame is read back signed (noise below the unloaded level reads negative
+    and averages out), and weighted over the mask, over its bounding box grown by 2, 4,
+    ..., 32 taxels and over the whole array; the smallest of these windows is kept whose
+    centre agrees with every larger one's within 3 noise sigmas (Lepski's rule). A frame
+    darker than the camera's unloaded level is not the model's: its image is weighed.
 
     A calibrated image's force is summed over each region and its catchment: the taxels
     within 3.5 cover depths of it (at least 2 taxels; `catchment_reach`) nearer to it than

@@ -248,7 +248,9 @@ def extract(
         array geometry; larger values mean more pressure.
     sensor_or_pitch : float, (float, float) or object with ``taxel_pitch``
         Taxel pitch [m], a (row, column) pair, or a sensor description (a
-        `taxel.sensor.TactileSensor`: its cover depth then decides `defects`). The taxels
+        `taxel.sensor.TactileSensor`: its cover depth then decides `defects`, and an
+        FTIR camera's raw frame is read back to pressure for the centre of pressure, see
+        `find_contact`). The taxels
         must be square to 1 %: the contact type and the holes are measured in taxels
         (resample an image of oblong taxels first; `find_contact` takes any pitch).
     pose : array_like, shape (4, 4), optional

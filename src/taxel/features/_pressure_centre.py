@@ -35,13 +35,13 @@ _RADII = (0, 2, 4, 8, 16, 32)
 _AGREE = 3.0
 
 
-def _index_sums(first: np.ndarray, stop: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Sums of the indices first..stop - 1 and of their squares (element-wise)."""
+def _index_sums(first: int, stop: int) -> tuple[int, int]:
+    """Sums of the indices first..stop - 1 and of their squares."""
 
-    def squares(n: np.ndarray) -> np.ndarray:  # 0^2 + ... + (n - 1)^2
-        return (n - 1) * n * (2 * n - 1) / 6
+    def squares(n: int) -> int:  # 0^2 + ... + (n - 1)^2
+        return (n - 1) * n * (2 * n - 1) // 6
 
-    return (first + stop - 1) * (stop - first) / 2, squares(stop) - squares(first)
+    return (first + stop - 1) * (stop - first) // 2, squares(stop) - squares(first)
 
 
 def _windows(prepared: Prepared) -> list[tuple[int, int, int, int]]:
@@ -88,8 +88,10 @@ def _first_moment(cumulative: np.ndarray, first: np.ndarray, stop: np.ndarray) -
     )
 
 
-def _box_sums(pressure: np.ndarray, boxes: list[tuple[int, int, int, int]]) -> np.ndarray:
-    """The window sums of `pressure_centre` over each box, one box a column.
+def _box_sums(
+    pressure: np.ndarray, boxes: list[tuple[int, int, int, int]]
+) -> list[tuple[float, ...]]:
+    """The window sums of `pressure_centre` over each box.
 
     From the pressure's integral image alone: a box's pressure by rows is the difference
     of two of its columns, whose first moment is then taken by parts (`_first_moment`),
@@ -100,9 +102,14 @@ def _box_sums(pressure: np.ndarray, boxes: list[tuple[int, int, int, int]]) -> n
     total = integral[r1, c1] - integral[r0, c1] - integral[r1, c0] + integral[r0, c0]
     w_y = _first_moment(integral[:, c1] - integral[:, c0], r0, r1)
     w_x = _first_moment((integral[r1] - integral[r0]).T, c0, c1)
-    n_r, n_c = r1 - r0, c1 - c0
-    (s_r, s_rr), (s_c, s_cc) = _index_sums(r0, r1), _index_sums(c0, c1)
-    return np.vstack((total, w_y, w_x, n_r * n_c, n_c * s_r, n_r * s_c, n_c * s_rr + n_r * s_cc))
+    sums = []
+    for (top, left, bottom, right), *weighted in zip(
+        boxes, total.tolist(), w_y.tolist(), w_x.tolist(), strict=True
+    ):
+        n_r, n_c = bottom - top, right - left
+        (s_r, s_rr), (s_c, s_cc) = _index_sums(top, bottom), _index_sums(left, right)
+        sums.append((*weighted, n_r * n_c, n_c * s_r, n_r * s_c, n_c * s_rr + n_r * s_cc))
+    return sums
 
 
 def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] | None:
@@ -123,7 +130,7 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
         return None
     pressure = signed_pressure(read)
     candidates = [_mask_sums(prepared, pressure)]
-    candidates += _box_sums(pressure, _windows(prepared)).T.tolist()
+    candidates += _box_sums(pressure, _windows(prepared))
     noise = noise_pressure(read, prepared.raw_noise)
     centres, moved = [], []
     rows, cols = pressure.shape
