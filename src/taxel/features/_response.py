@@ -73,11 +73,11 @@ def read_back(
 
 
 @functools.lru_cache(maxsize=8)
-def _level_table(transducer: FtirTransducer) -> np.ndarray:
-    """Signed pressure [Pa] of each 8-bit grey level, scratches aside (float32)."""
-    return transducer.invert(np.arange(256.0)[None], subtract_scratches=False, keep_sign=True)[
-        0
-    ].astype(np.float32)
+def _level_table(transducer: FtirTransducer, levels: int) -> np.ndarray:
+    """Signed pressure [Pa] of each grey level 0..levels - 1, scratches aside (float32)."""
+    grey = np.arange(float(levels))[None]
+    table = transducer.invert(grey, subtract_scratches=False, keep_sign=True)[0]
+    return table.astype(np.float32)
 
 
 @functools.lru_cache(maxsize=4)
@@ -91,14 +91,17 @@ def _scratched(transducer: FtirTransducer, shape: tuple[int, int]) -> tuple[np.n
 def signed_pressure(read: ReadBack) -> np.ndarray:
     """Pressure [Pa] of every pixel, negative below the unloaded level (float32).
 
-    ``transducer.invert(frame, keep_sign=True)``; an 8-bit frame through a table of its
-    256 levels, with only the scratched pixels (4 % of the glass) computed one by one,
+    ``transducer.invert(frame, keep_sign=True)``; an 8- or 16-bit frame through a table of
+    its levels, with only the scratched pixels (4 % of the glass) computed one by one,
     since scipy's erfinv costs ~20 ns a pixel.
     """
     transducer, frame = read.transducer, read.frame
-    if frame.dtype != np.uint8:
+    if frame.dtype == np.uint8:
+        pressure = cv2.LUT(frame, _level_table(transducer, 256))
+    elif frame.dtype == np.uint16:
+        pressure = _level_table(transducer, 65536).take(frame)
+    else:
         return transducer.invert(frame, keep_sign=True).astype(np.float32)
-    pressure = cv2.LUT(frame, _level_table(transducer))
     if transducer.scratch_count:
         where, scratch = _scratched(transducer, frame.shape)
         span = transducer.bright_level - transducer.dark_level
