@@ -4,6 +4,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from scipy import special
 
 from taxel.features import extract, prepare
 from taxel.features._pressure_centre import _box_sums
@@ -34,12 +35,12 @@ def _error(centroid_m, truth, sensor):
 def test_the_table_read_back_is_the_transducers_inverse(vhdta):
     raw, _ = _pressed(vhdta, "punch", 5.0, (1e-3, 0.0))
     wanted = vhdta.transducer.invert(raw, keep_sign=True)
-    fast = signed_pressure(read_back(vhdta, raw, calibrated=False, referenced=False))
+    fast = signed_pressure(read_back(vhdta, raw, calibrated=False))
     assert fast.dtype == np.float32
     np.testing.assert_allclose(fast, wanted, rtol=1e-6, atol=1e-3)
     assert np.any(fast < 0) and np.any(fast > 1e4)  # noise below the level, contact above
     for dtype in (np.uint16, np.int64, np.float64):  # a 16-bit table, the law itself
-        other = read_back(vhdta, raw.astype(dtype), calibrated=False, referenced=False)
+        other = read_back(vhdta, raw.astype(dtype), calibrated=False)
         np.testing.assert_allclose(signed_pressure(other), wanted, rtol=1e-6, atol=1e-3)
 
 
@@ -63,6 +64,24 @@ def test_a_texture_is_centred_on_its_pressure_not_on_its_image(vhdta):
     assert np.mean(through) < 0.8 * np.mean(weighed)
 
 
+def test_a_tared_frame_reads_back_its_step_above_the_tare(vhdta):
+    raw, truth = _pressed(vhdta, "foam", 20.0, (1e-3, -2e-3))
+    unloaded = vhdta.frame_from_pressure(np.zeros(vhdta.load_grid.shape), rng=7).raw
+    mean = np.mean(
+        [vhdta.frame_from_pressure(np.zeros(vhdta.load_grid.shape), rng=s).raw for s in range(4)],
+        axis=0,
+    )
+    for tare in (unloaded, mean):  # one frame (integer steps, a table) or a mean of four
+        read = prepare(raw, vhdta, reference=tare).read_back
+        assert read is not None and read.tare is tare
+        light = (raw.astype(float) - tare) / 96.0  # the step above the tare, of the span
+        top = 1.0 - 0.5 / 96.0
+        wanted = 1330000.0 * 0.35 / np.sqrt(2.0) * special.erfinv(np.clip(light, -top, top))
+        np.testing.assert_allclose(signed_pressure(read), wanted, rtol=1e-5, atol=1e-2)
+        tared = extract(raw, vhdta, reference=tare).contact
+        assert _error(tared.centroid_m, truth, vhdta) < 0.3
+
+
 def test_a_small_contact_in_noise_keeps_to_its_mask(vhdta):
     # a pen tip: every window past the mask adds noise and no pressure, and Lepski's rule
     # keeps the mask; with a region, its centroid is the contact's
@@ -77,7 +96,6 @@ def test_frames_the_model_does_not_read_back_weigh_the_image(vhdta):
     raw, _ = _pressed(vhdta, "punch", 5.0, (1e-3, 0.0))
     assert prepare(raw, vhdta).read_back is not None
     assert prepare(raw, vhdta, calibrated=True).read_back is None
-    assert prepare(raw, vhdta, reference=np.full(raw.shape, 24, np.uint8)).read_back is None
     assert prepare(raw, vhdta.taxel_pitch).read_back is None
     resistive = make_sensor("resistive16")
     assert prepare(np.zeros(resistive.shape), resistive).read_back is None

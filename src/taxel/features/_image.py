@@ -413,7 +413,7 @@ def prepare(
         "cover_depth": cover_depth(sensor_or_pitch) or 0.0, "hexagonal": resampled,
         "read_back": None if resampled else read_back(
             sensor_or_pitch, np.asarray(image), calibrated=calibrated,
-            referenced=reference is not None,
+            tare=None if reference is None else np.asarray(reference),
         ),
     }  # fmt: skip
     if contrast <= max(K_HIGH * noise, floor):

@@ -39,10 +39,14 @@ class ReadBack:
         A textured one (its grey level carries pressure).
     frame : numpy.ndarray
         The raw camera frame [DN], as given.
+    tare : numpy.ndarray or None
+        The sensor's unloaded frame (or a mean of several) [DN], when the frame was tared:
+        the frame's unloaded level, in place of the model's dark level and scratches.
     """
 
     transducer: FtirTransducer
     frame: np.ndarray
+    tare: np.ndarray | None = None
 
 
 def read_back(
@@ -50,26 +54,25 @@ def read_back(
     frame: np.ndarray,
     *,
     calibrated: bool,
-    referenced: bool,
+    tare: np.ndarray | None = None,
 ) -> ReadBack | None:
     """The frame's read-back, when the sensor's raw output is its transducer's own signal.
 
     Only for a textured FTIR transducer behind an ideal readout, on a raw frame of the
-    sensor's shape that was neither calibrated nor tared (a tare subtracts the scratches
-    the read-back subtracts too); None otherwise, and the features weigh the image.
+    sensor's shape that was not calibrated, tared or not by `tare` (its unloaded frame);
+    None otherwise, and the features weigh the image.
     """
     transducer = getattr(sensor_or_pitch, "transducer", None)
     readout = getattr(sensor_or_pitch, "readout", None)
     if (
         calibrated
-        or referenced
         or not isinstance(transducer, FtirTransducer)
         or not transducer.textured
         or getattr(readout, "is_identity", False) is not True
         or getattr(sensor_or_pitch, "shape", None) != frame.shape
     ):
         return None
-    return ReadBack(transducer, frame)
+    return ReadBack(transducer, frame, tare)
 
 
 @functools.lru_cache(maxsize=8)
@@ -88,14 +91,39 @@ def _scratched(transducer: FtirTransducer, shape: tuple[int, int]) -> tuple[np.n
     return where, pattern[where]
 
 
+def _law(transducer: FtirTransducer, light: np.ndarray) -> np.ndarray:
+    """Signed pressure [Pa] of a light fraction above the unloaded level [-] (the law)."""
+    top = 1.0 - 0.5 / (transducer.bright_level - transducer.dark_level)
+    scale = transducer.contact_modulus * transducer.rms_slope / math.sqrt(2.0)
+    return scale * special.erfinv(np.clip(light, -top, top))
+
+
+@functools.lru_cache(maxsize=8)
+def _step_table(transducer: FtirTransducer, levels: int) -> np.ndarray:
+    """Signed pressure [Pa] of each grey-level step -(levels - 1)..levels - 1 (float32)."""
+    steps = np.arange(1.0 - levels, float(levels))
+    span = transducer.bright_level - transducer.dark_level
+    return _law(transducer, steps / span).astype(np.float32)
+
+
 def signed_pressure(read: ReadBack) -> np.ndarray:
     """Pressure [Pa] of every pixel, negative below the unloaded level (float32).
 
     ``transducer.invert(frame, keep_sign=True)``; an 8- or 16-bit frame through a table of
     its levels, with only the scratched pixels (4 % of the glass) computed one by one,
-    since scipy's erfinv costs ~20 ns a pixel.
+    since scipy's erfinv costs ~20 ns a pixel. A tared frame's light is its step above
+    the tare: through a table of the steps when both are integers.
     """
-    transducer, frame = read.transducer, read.frame
+    transducer, frame, tare = read.transducer, read.frame, read.tare
+    span = transducer.bright_level - transducer.dark_level
+    if tare is not None:
+        if frame.dtype.kind in "iu" and tare.dtype.kind in "iu" and frame.itemsize <= 2:
+            levels = 256 if frame.dtype.itemsize == 1 and tare.dtype.itemsize == 1 else 65536
+            steps = frame.astype(np.int32) - tare.astype(np.int32) + (levels - 1)
+            if steps.min() >= 0 and steps.max() < 2 * levels - 1:
+                return _step_table(transducer, levels).take(steps)
+        light = (frame.astype(np.float64) - tare) / span
+        return _law(transducer, light).astype(np.float32)
     if frame.dtype == np.uint8:
         pressure = cv2.LUT(frame, _level_table(transducer, 256))
     elif frame.dtype == np.uint16:
@@ -104,34 +132,35 @@ def signed_pressure(read: ReadBack) -> np.ndarray:
         return transducer.invert(frame, keep_sign=True).astype(np.float32)
     if transducer.scratch_count:
         where, scratch = _scratched(transducer, frame.shape)
-        span = transducer.bright_level - transducer.dark_level
-        fraction = (frame.ravel()[where] - transducer.dark_level) / span - scratch
-        top = 1.0 - 0.5 / span
-        scale = transducer.contact_modulus * transducer.rms_slope / math.sqrt(2.0)
-        clipped = np.sign(fraction) * np.minimum(np.abs(fraction), top)
-        pressure.ravel()[where] = scale * special.erfinv(clipped)
+        light = (frame.ravel()[where] - transducer.dark_level) / span - scratch
+        pressure.ravel()[where] = _law(transducer, light)
     return pressure
 
 
 def below_unloaded(read: ReadBack, outside: np.ndarray) -> bool:
-    """Whether the frame's background is darker than the transducer's unloaded level.
+    """Whether the frame's background is darker than its unloaded level.
 
-    The mean grey level over `outside` (uint8, nonzero off the contact), less the light of
-    the glass's scratches there, more than `_DARK_SLACK` below the dark level: the frame
-    is not the model's (another camera's dark level, a synthetic image), and its read-back
-    would give the whole background a negative pressure.
+    The mean grey level over `outside` (uint8, nonzero off the contact) more than
+    `_DARK_SLACK` below the unloaded level there: the tare's, or the transducer's dark
+    level and its glass's scratches. The frame is then not the model's (another camera's
+    dark level, a synthetic image), and its read-back would give the whole background a
+    negative pressure.
     """
-    transducer, frame = read.transducer, read.frame
+    transducer, frame, tare = read.transducer, read.frame, read.tare
     count = cv2.countNonZero(outside)
     if count == 0:
         return False
     image = frame if frame.dtype == np.uint8 else frame.astype(np.float32)
     level = cv2.mean(image, mask=outside)[0]
-    if transducer.scratch_count:
-        where, scratch = _scratched(transducer, frame.shape)
-        span = transducer.bright_level - transducer.dark_level
-        level -= span * float(scratch @ (outside.ravel()[where] > 0)) / count
-    return level < transducer.dark_level - _DARK_SLACK
+    if tare is not None:
+        unloaded = cv2.mean(tare.astype(np.float32), mask=outside)[0]
+    else:
+        unloaded = transducer.dark_level
+        if transducer.scratch_count:
+            where, scratch = _scratched(transducer, frame.shape)
+            span = transducer.bright_level - transducer.dark_level
+            unloaded += span * float(scratch @ (outside.ravel()[where] > 0)) / count
+    return level < unloaded - _DARK_SLACK
 
 
 def noise_pressure(read: ReadBack, grey_noise: float) -> float:
