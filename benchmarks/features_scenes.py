@@ -29,7 +29,7 @@ from taxel.frames import make_pose, transform_points
 from taxel.mechanics import INDENTER_NAMES, make_indenter
 from taxel.sensor import TactileSensor, make_sensor
 
-VERSION = 3  # bump when the scenes, labels or solver change: old cache files are then ignored
+VERSION = 4  # bump when the scenes, labels or solver change: old cache files are then ignored
 CACHE = Path(__file__).resolve().parent / ".cache"
 POINT_SIZE = 2.5e-3  # [m], the default `point_size` of taxel.features.extract
 NOISE_LEVELS = (0.0, 0.05)  # added noise, fraction of the sensor's full scale
@@ -78,6 +78,12 @@ class Labelled:
         Whether a hole or a slot is truly present on the array.
     centroid_m : (float, float)
         Force-weighted centroid of the true pressure on the array, sensor frame [m].
+    felt_centroid_m : (float, float)
+        Centroid of what the transducers sense (the sensed quantity at the taxels,
+        noise-free) over the whole array, sensor frame [m]: where an exact, noise-free
+        sensor weighing its whole array would put the contact. The cover spreads the
+        load, and what it spreads off the array is not felt: a contact the array's edge
+        cuts is felt off its pressure's centroid (the floor of the centroid error).
     major_axis_m : float
         Full major axis of the true contact region, 4 sqrt(largest variance) [m].
     line_angle : float or None
@@ -101,6 +107,7 @@ class Labelled:
     hole: bool
     slot: bool
     centroid_m: tuple[float, float]
+    felt_centroid_m: tuple[float, float]
     major_axis_m: float
     line_angle: float | None
     arc_radius: float | None
@@ -359,6 +366,7 @@ def simulate(sensor_name: str, per_indenter: int, seed: int) -> list[Labelled]:
     scale = full_scale(sensor)
     half = min(n * p for n, p in zip(sensor.shape, sensor.taxel_pitch, strict=True)) / 2
     x, y = sensor.load_grid.coordinates()
+    taxel_x, taxel_y = sensor.geometry.positions()
     frames = []
     for index, name in enumerate(INDENTER_NAMES):
         rng = np.random.default_rng([seed, index])
@@ -370,6 +378,11 @@ def simulate(sensor_name: str, per_indenter: int, seed: int) -> list[Labelled]:
             )
             heights = indenter.heights(x, y, position=position, angle=angle)
             truth = _labels(name, parameters, position, angle, sensor, frame.contact, heights)
+            felt = np.asarray(frame.quantity, dtype=float)
+            truth["felt_centroid_m"] = (
+                float((felt * taxel_x).sum() / felt.sum()),
+                float((felt * taxel_y).sum() / felt.sum()),
+            )
             level = float(rng.uniform(*NOISE_LEVELS))
             low, high = _output_range(frame.raw, sensor)
             noisy = frame.raw + rng.normal(0.0, level * scale, size=frame.raw.shape)

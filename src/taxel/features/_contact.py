@@ -446,8 +446,9 @@ def find_contact(
     fraction of the contrast (see `taxel.features.prepare`).
 
     Given a sensor whose raw frame its transducer reads back to pressure (a textured
-    FTIR camera behind an ideal readout, on a frame neither calibrated nor tared), the
-    contact's centre of pressure is that pressure's, not the image's: the grey level
+    FTIR camera behind an ideal readout, on a frame not calibrated; a tared frame's light
+    is its step above the `reference`), the contact's centre of pressure is that
+    pressure's, not the image's: the grey level
     follows the real contact area, which saturates, and light contact lies beyond the
     mask. The frame is read back signed (noise below the unloaded level reads negative
     and averages out), and weighted over the mask, over its bounding box grown by 2, 4,
