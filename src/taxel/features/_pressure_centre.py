@@ -31,7 +31,9 @@ __all__ = ["pressure_centre"]
 # (each doubles the last), then the whole array
 _RADII = (0, 2, 4, 8, 16, 32)
 # Two centres agree when they lie within this many noise sigmas of their difference (the
-# RMS over both axes of each centre's noise, added in quadrature)
+# RMS over both axes of each centre's noise, added in quadrature). Chosen on the features
+# benchmark over 2 and 2.5: centroid p95 0.55 taxel against 0.58 and 0.56 on its 1008
+# vhdta128 frames, 0.56 against 0.61 on the second draw with 2
 _AGREE = 3.0
 
 
