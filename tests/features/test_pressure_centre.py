@@ -134,3 +134,34 @@ def test_oblong_taxels_are_refused_after_the_defects_are_removed(vhdta):
     assert prepared.defects_removed and not prepared.hexagonal
     with pytest.raises(ValueError, match="square taxels for the contact type"):
         extract(raw, oblong)
+
+
+def test_a_brighter_camera_or_a_hot_pixel_far_away_leaves_the_centre(vhdta):
+    # a camera 3 grey levels brighter than the model everywhere: its background, flat
+    # beyond the contact's reach, is taken out; a hot pixel there is out of every window
+    pen, _ = _pressed(vhdta, "pen", 1.0, (2e-3, 1e-3))
+    border, _ = _pressed(vhdta, "punch", 5.0, (15.5e-3, 0.0))  # cut by the array's edge
+    for raw in (pen, border):
+        centre = np.array(extract(raw, vhdta).contact.centroid_index)
+        brighter = np.clip(raw.astype(int) + 3, 0, 255).astype(np.uint8)
+        hot = raw.copy()
+        hot[5, 5 if raw is border else 120] = 255
+        for frame in (brighter, hot):
+            moved = np.array(extract(frame, vhdta).contact.centroid_index) - centre
+            assert np.hypot(*moved) < 0.1
+
+
+def test_a_duck_typed_sensor_may_give_its_shape_as_an_array(vhdta):
+    raw, _ = _pressed(vhdta, "pen", 1.0, (2e-3, 1e-3))
+
+    class Camera:
+        taxel_pitch = vhdta.taxel_pitch
+        cover = vhdta.cover
+        transducer = vhdta.transducer
+        readout = vhdta.readout
+        shape = np.array(vhdta.shape)
+
+    read = read_back(Camera(), raw, calibrated=False)
+    assert read is not None
+    with_array = extract(raw, Camera()).contact.centroid_index
+    assert with_array == pytest.approx(extract(raw, vhdta).contact.centroid_index, abs=1e-9)

@@ -13,7 +13,7 @@ from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._moments import binary_moments
 from taxel.features._pressure_centre import pressure_centre
 from taxel.features._record import record
-from taxel.features._window import contact_box, contact_window
+from taxel.features._window import catchment_reach, contact_box, contact_window
 
 __all__ = [
     "Contact",
@@ -25,10 +25,6 @@ __all__ = [
     "region_moments",
     "signal_moments",
 ]
-
-# a contact's load is felt this many cover depths around it (2 % of a point load's beyond)
-_TAIL_DEPTHS = 3.5
-_HALO_TAXELS = 2  # ... and at least this far: the smoothing's reach
 
 
 @record
@@ -275,17 +271,6 @@ def _centred(contact: Contact, centre: tuple[float, float], prepared: Prepared) 
     return replace(contact, centroid_index=centre, centroid_m=centroid_m, regions=regions)
 
 
-def catchment_reach(prepared: Prepared) -> int:
-    """How far [taxels] around a contact its load is felt: 3.5 cover depths, at least 2.
-
-    A point load's stress at depth d spreads as Boussinesq's sigma_z, of which the part
-    beyond a radius R is (1 + R^2 / d^2)^(-3/2): 2 % at R = 3.5 d. Without a cover (a bare
-    pitch, a pressure map) the smoothing's reach, 2 taxels.
-    """
-    depths = _TAIL_DEPTHS * prepared.cover_depth / prepared.mean_pitch
-    return max(_HALO_TAXELS, math.ceil(depths - 1e-9))
-
-
 def felt_forces(prepared: Prepared) -> np.ndarray:
     """Force [N] of each region of a calibrated image, its load's tails included.
 
@@ -451,10 +436,14 @@ def find_contact(
     pressure's, not the image's: the grey level
     follows the real contact area, which saturates, and light contact lies beyond the
     mask. The frame is read back signed (noise below the unloaded level reads negative
-    and averages out), and weighted over the mask, over its bounding box grown by 2, 4,
-    ..., 32 taxels and over the whole array; the smallest of these windows is kept whose
-    centre agrees with every larger one's within 3 noise sigmas (Lepski's rule). A frame
-    darker than the camera's unloaded level is not the model's: its image is weighed.
+    and averages out), and weighted over the mask and over its bounding box grown by 0,
+    2, 4, ... taxels up to the reach of its load (3.5 cover depths); the smallest of these
+    windows is kept whose centre agrees with every larger one's within 3 noise sigmas
+    (Lepski's rule). A frame darker than the camera's unloaded level is not the model's:
+    its image is weighed. A brighter one, whose background is flat beyond the contact's
+    reach, has that level taken out when over a grey level; a texture pressed over the
+    whole array leaves no background to show it, and reads such an offset as light
+    contact: tare the frame (`reference`).
 
     A calibrated image's force is summed over each region and its catchment: the taxels
     within 3.5 cover depths of it (at least 2 taxels; `catchment_reach`) nearer to it than

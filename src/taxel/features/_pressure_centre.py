@@ -5,12 +5,12 @@ at a threshold, does not reach, and the cover spreads every load beyond it: a ce
 weighted over the mask alone misses that pressure. A window grown around the contact takes
 it in, and takes in the noise of every background taxel too. The window is chosen by
 Lepski's rule (Lepski, Mammen & Spokoiny, Ann. Statist. 25, 1997), the usual answer when
-an estimate's bias is unknown but its noise is: going from the largest window down, a
-smaller one is kept only while its centre agrees with every larger window's within their
-noise; where it does not, the larger windows have seen pressure the smaller one missed.
-The pressure is the frame read back through the sensor's response (`_response`), signed,
-so that the background's noise averages out instead of pulling the centre towards the
-window's middle.
+an estimate's bias is unknown but its noise is: the smallest window is kept whose centre
+agrees with every larger window's within their noise; where one does not, the larger
+windows have seen pressure it missed. No window reaches past the contact's load (3.5 cover
+depths), so that a defect or an offset far from the contact does not count. The pressure
+is the frame read back through the sensor's response (`_response`), signed, so that the
+background's noise averages out instead of pulling the centre towards the window's middle.
 """
 
 from __future__ import annotations
@@ -23,15 +23,25 @@ import numpy as np
 from taxel.features._image import Prepared
 from taxel.features._moments import binary_moments
 from taxel.features._response import ReadBack, below_unloaded, noise_pressure, signed_pressure
-from taxel.features._window import contact_box, contact_window
+from taxel.features._window import catchment_reach, contact_box, contact_window
 
 __all__ = ["pressure_centre"]
 
 # The windows: the contact mask, then its bounding box grown by each of these [taxels]
-# (each doubles the last), then the whole array
+# short of the reach of the contact's load (3.5 cover depths, see `catchment_reach`), and
+# by that reach: beyond it the cover spreads 2 % of a point load
 _RADII = (0, 2, 4, 8, 16, 32)
-# Two centres agree when they lie within this many noise sigmas of their difference (the
-# RMS over both axes of each centre's noise, added in quadrature). Chosen on the features
+# A camera brighter than the model everywhere (another dark level, a drift of the
+# lighting) adds a level to every window, which pulls each towards its middle. Where the
+# windows stop short of the whole array, the background beyond the contact's reach shows
+# it: when at least `_FAR_TAXELS` taxels lie there, spread by at most `_FLAT` noise sigmas
+# (flat, as noise alone is: 0.9 sigma on vhdta128; a texture's light contact spreads by
+# 2.3-2.6), its mean is taken out of every window when over `_OFFSET` grey levels
+_FAR_TAXELS = 256
+_FLAT = 1.5
+_OFFSET = 1.0
+# Two centres agree when they lie within this many noise sigmas of their difference (each
+# centre's noise over both axes together, added in quadrature). Chosen on the features
 # benchmark over 2 and 2.5: centroid p95 0.55 taxel against 0.58 and 0.56 on its 1008
 # vhdta128 frames, 0.56 against 0.61 on the second draw with 2
 _AGREE = 3.0
@@ -46,12 +56,15 @@ def _index_sums(first: int, stop: int) -> tuple[int, int]:
     return (first + stop - 1) * (stop - first) // 2, squares(stop) - squares(first)
 
 
-def _windows(prepared: Prepared) -> list[tuple[int, int, int, int]]:
-    """The contact's bounding box grown by each of `_RADII` taxels, clipped, then the array."""
+def _windows(prepared: Prepared, reach: int) -> list[tuple[int, int, int, int]]:
+    """The contact's bounding box grown by `_RADII` taxels short of `reach`, and by it.
+
+    Each box clipped to the array: (top, left, bottom, right).
+    """
     left, top, width, height = contact_box(prepared)
     rows, cols = prepared.mask.shape
     boxes: list[tuple[int, int, int, int]] = []
-    for grow in _RADII:
+    for grow in [*(r for r in _RADII if r < reach), reach]:
         box = (
             max(top - grow, 0),
             max(left - grow, 0),
@@ -60,9 +73,22 @@ def _windows(prepared: Prepared) -> list[tuple[int, int, int, int]]:
         )
         if not boxes or box != boxes[-1]:
             boxes.append(box)
-    if boxes[-1] != (0, 0, rows, cols):
-        boxes.append((0, 0, rows, cols))
     return boxes
+
+
+def _background(prepared: Prepared, pressure: np.ndarray, reach: int, noise: float) -> float:
+    """Mean signed pressure beyond `reach` of the contact, where none is felt, if flat [Pa].
+
+    0 when fewer than `_FAR_TAXELS` taxels lie there, or when they spread by more than
+    `_FLAT` noise sigmas (light contact, not an offset).
+    """
+    side = 2 * reach + 1
+    near = cv2.dilate(prepared.mask, cv2.getStructuringElement(cv2.MORPH_RECT, (side, side)))
+    far = (near == 0).view(np.uint8)
+    if cv2.countNonZero(far) < _FAR_TAXELS:
+        return 0.0
+    mean, spread = (float(v[0, 0]) for v in cv2.meanStdDev(pressure, mask=far))
+    return mean if spread <= _FLAT * noise else 0.0
 
 
 def _mask_sums(prepared: Prepared, pressure: np.ndarray) -> tuple[float, ...]:
@@ -117,26 +143,35 @@ def _box_sums(
 def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] | None:
     """Centre of pressure (row, col) of the contact through the sensor's response, or None.
 
-    The signed pressure (`signed_pressure`) is weighted over each window: the contact mask,
-    its bounding box grown by each of `_RADII` taxels, and the whole array. A window's
-    centre moves with the noise by sigma times the root of the window's sum of squared
-    distances to the centre, over its total pressure (RMS over both axes). The smallest
-    window is kept whose centre lies within `_AGREE` times the noise of every larger
-    window's (Lepski's rule, see the module notes). Windows whose pressure sums to nothing,
-    or whose centre falls off the array, are passed over; None when every window is, or
-    when the frame's background is darker than the sensor's unloaded level
-    (`below_unloaded`): the frame is then not the model's, and the image is weighed.
+    The signed pressure (`signed_pressure`) is weighted over each window: the contact mask
+    and its bounding box grown by `_RADII` taxels up to the reach of its load (3.5 cover
+    depths, `catchment_reach`). A window's centre moves with the noise by sigma times the
+    root of the window's sum of squared distances to the centre over its total pressure
+    (both axes together). The smallest window is kept whose centre lies within `_AGREE`
+    times the noise of every larger window's (Lepski's rule, see the module notes).
+    Windows whose pressure sums to nothing, or whose centre falls off the array, are
+    passed over; None when every window is, or when the frame's background is darker than
+    the sensor's unloaded level (`below_unloaded`): the frame is then not the model's,
+    and the image is weighed. A brighter background, flat beyond the reach, is a camera's
+    offset from the model: taken out when over a grey level (`_background`).
     """
     outside = (prepared.mask == 0).view(np.uint8)
     if below_unloaded(read, outside):
         return None
     pressure = signed_pressure(read)
-    candidates = [_mask_sums(prepared, pressure)]
-    candidates += _box_sums(pressure, _windows(prepared))
     noise = noise_pressure(read, prepared.raw_noise)
+    reach = catchment_reach(prepared)
+    windows = _windows(prepared, reach)
+    level = 0.0
+    if windows[-1] != (0, 0, *pressure.shape):  # (over the whole array, light contact)
+        level = _background(prepared, pressure, reach, noise)
+        if level < _OFFSET * noise_pressure(read, 1.0):
+            level = 0.0
+    candidates = [_mask_sums(prepared, pressure), *_box_sums(pressure, windows)]
     centres, moved = [], []
     rows, cols = pressure.shape
     for total, w_y, w_x, n, s_y, s_x, s_sq in candidates:
+        total, w_y, w_x = total - level * n, w_y - level * s_y, w_x - level * s_x
         if not total > 0:
             continue
         c_y, c_x = w_y / total, w_x / total

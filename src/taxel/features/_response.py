@@ -69,10 +69,18 @@ def read_back(
         or not isinstance(transducer, FtirTransducer)
         or not transducer.textured
         or getattr(readout, "is_identity", False) is not True
-        or getattr(sensor_or_pitch, "shape", None) != frame.shape
+        or _shape_of(sensor_or_pitch) != frame.shape
     ):
         return None
     return ReadBack(transducer, frame, tare)
+
+
+def _shape_of(sensor: Any) -> tuple[int, ...] | None:
+    """A sensor's ``shape`` as a tuple of ints (a duck-typed one may give an array), or None."""
+    try:
+        return tuple(int(n) for n in sensor.shape)
+    except (AttributeError, TypeError, ValueError):
+        return None
 
 
 @functools.lru_cache(maxsize=8)
@@ -109,15 +117,17 @@ def _step_table(transducer: FtirTransducer, levels: int) -> np.ndarray:
 def signed_pressure(read: ReadBack) -> np.ndarray:
     """Pressure [Pa] of every pixel, negative below the unloaded level (float32).
 
-    ``transducer.invert(frame, keep_sign=True)``; an 8- or 16-bit frame through a table of
-    its levels, with only the scratched pixels (4 % of the glass) computed one by one,
-    since scipy's erfinv costs ~20 ns a pixel. A tared frame's light is its step above
-    the tare: through a table of the steps when both are integers.
+    ``transducer.invert(frame, keep_sign=True)``; an unsigned 8- or 16-bit frame (in the
+    machine's byte order) through a table of its levels, with only the scratched pixels
+    (4 % of the glass) computed one by one, since scipy's erfinv costs ~20 ns a pixel;
+    other frames through the law on every pixel. A tared frame's light is its step above
+    the tare: through a table of the steps when both are integers of at most 16 bits.
     """
     transducer, frame, tare = read.transducer, read.frame, read.tare
     span = transducer.bright_level - transducer.dark_level
     if tare is not None:
-        if frame.dtype.kind in "iu" and tare.dtype.kind in "iu" and frame.itemsize <= 2:
+        small = frame.itemsize <= 2 and tare.itemsize <= 2
+        if small and frame.dtype.kind in "iu" and tare.dtype.kind in "iu":
             levels = 256 if frame.dtype.itemsize == 1 and tare.dtype.itemsize == 1 else 65536
             steps = frame.astype(np.int32) - tare.astype(np.int32) + (levels - 1)
             if steps.min() >= 0 and steps.max() < 2 * levels - 1:

@@ -6,6 +6,7 @@ rather than over the whole image; each is computed once and kept in ``prepared.m
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import cv2
@@ -13,10 +14,31 @@ import numpy as np
 
 from taxel.features._image import Prepared
 
-__all__ = ["WHOLE_IMAGE", "contact_area", "contact_box", "contact_hull", "contact_window"]
+__all__ = [
+    "WHOLE_IMAGE",
+    "catchment_reach",
+    "contact_area",
+    "contact_box",
+    "contact_hull",
+    "contact_window",
+]
 
 # Images of at most this many taxels are read whole (see `contact_window`).
 WHOLE_IMAGE = 32 * 32
+# a contact's load is felt this many cover depths around it (2 % of a point load's beyond)
+_TAIL_DEPTHS = 3.5
+_HALO_TAXELS = 2  # ... and at least this far: the smoothing's reach
+
+
+def catchment_reach(prepared: Prepared) -> int:
+    """How far [taxels] around a contact its load is felt: 3.5 cover depths, at least 2.
+
+    A point load's stress at depth d spreads as Boussinesq's sigma_z, of which the part
+    beyond a radius R is (1 + R^2 / d^2)^(-3/2): 2 % at R = 3.5 d. Without a cover (a bare
+    pitch, a pressure map) the smoothing's reach, 2 taxels.
+    """
+    depths = _TAIL_DEPTHS * prepared.cover_depth / prepared.mean_pitch
+    return max(_HALO_TAXELS, math.ceil(depths - 1e-9))
 
 
 def contact_area(prepared: Prepared) -> int:
