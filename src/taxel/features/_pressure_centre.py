@@ -22,7 +22,13 @@ import numpy as np
 
 from taxel.features._image import Prepared
 from taxel.features._moments import binary_moments
-from taxel.features._response import ReadBack, below_unloaded, noise_pressure, signed_pressure
+from taxel.features._response import (
+    ReadBack,
+    below_unloaded,
+    grey_level_pressure,
+    noise_pressure,
+    signed_pressure,
+)
 from taxel.features._window import catchment_reach, contact_box, contact_window
 
 __all__ = ["pressure_centre"]
@@ -165,7 +171,7 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     level = 0.0
     if windows[-1] != (0, 0, *pressure.shape):  # (over the whole array, light contact)
         level = _background(prepared, pressure, reach, noise)
-        if level < _OFFSET * noise_pressure(read, 1.0):
+        if level < _OFFSET * grey_level_pressure(read):
             level = 0.0
     candidates = [_mask_sums(prepared, pressure), *_box_sums(pressure, windows)]
     centres, moved = [], []

@@ -20,7 +20,14 @@ from scipy import special
 
 from taxel.transducers import FtirTransducer
 
-__all__ = ["ReadBack", "below_unloaded", "noise_pressure", "read_back", "signed_pressure"]
+__all__ = [
+    "ReadBack",
+    "below_unloaded",
+    "grey_level_pressure",
+    "noise_pressure",
+    "read_back",
+    "signed_pressure",
+]
 
 # A frame whose background lies this far below the unloaded grey level [DN] is not one of
 # the model's (a camera reads below it by its noise alone, which the mean takes out)
@@ -173,15 +180,20 @@ def below_unloaded(read: ReadBack, outside: np.ndarray) -> bool:
     return level < unloaded - _DARK_SLACK
 
 
+def grey_level_pressure(read: ReadBack) -> float:
+    """Pressure [Pa] of one grey level at the unloaded level (the law's slope there)."""
+    transducer = read.transducer
+    span = transducer.bright_level - transducer.dark_level
+    # d erfinv / dx at 0 is sqrt(pi) / 2
+    slope = transducer.contact_modulus * transducer.rms_slope / math.sqrt(2.0)
+    return slope * math.sqrt(math.pi) / 2.0 / span
+
+
 def noise_pressure(read: ReadBack, grey_noise: float) -> float:
     """The noise of one pixel's pressure at the unloaded level [Pa], from the grey's [DN].
 
     An integer frame's noise is taken as its rounding's at least.
     """
-    transducer = read.transducer
     if read.frame.dtype.kind in "iu":
         grey_noise = max(grey_noise, _ROUNDING)
-    span = transducer.bright_level - transducer.dark_level
-    # d erfinv / dx at 0 is sqrt(pi) / 2
-    slope = transducer.contact_modulus * transducer.rms_slope / math.sqrt(2.0)
-    return grey_noise / span * slope * math.sqrt(math.pi) / 2.0
+    return grey_noise * grey_level_pressure(read)
