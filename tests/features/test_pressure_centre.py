@@ -165,3 +165,17 @@ def test_a_duck_typed_sensor_may_give_its_shape_as_an_array(vhdta):
     assert read is not None
     with_array = extract(raw, Camera()).contact.centroid_index
     assert with_array == pytest.approx(extract(raw, vhdta).contact.centroid_index, abs=1e-9)
+
+
+def test_a_reference_from_the_same_camera_takes_its_offset_under_a_texture(vhdta):
+    # foam over the array leaves no background to show a brighter camera: read against the
+    # model's dark level the offset is light contact, read against the camera's own
+    # unloaded frame it is gone
+    raw, truth = _pressed(vhdta, "foam", 20.0, (1e-3, -2e-3))
+    rest = vhdta.frame_from_pressure(np.zeros(vhdta.load_grid.shape), rng=9).raw
+    brighter, reference = (
+        np.clip(a.astype(int) + 6, 0, 255).astype(np.uint8) for a in (raw, rest)
+    )
+    assert _error(extract(brighter, vhdta).contact.centroid_m, truth, vhdta) > 1.0  # 1.65
+    tared = extract(brighter, vhdta, reference=reference).contact
+    assert _error(tared.centroid_m, truth, vhdta) < 0.2  # 0.10
