@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy import special
 
-from taxel.features import extract, prepare
+from taxel.features import contact_regions, extract, prepare
 from taxel.features._pressure_centre import _box_sums
 from taxel.features._response import read_back, signed_pressure
 from taxel.mechanics import make_indenter
@@ -179,3 +179,35 @@ def test_a_reference_from_the_same_camera_takes_its_offset_under_a_texture(vhdta
     assert _error(extract(brighter, vhdta).contact.centroid_m, truth, vhdta) > 1.0  # 1.65
     tared = extract(brighter, vhdta, reference=reference).contact
     assert _error(tared.centroid_m, truth, vhdta) < 0.2  # 0.10
+
+
+def _image_weighed(frame, sensor):
+    prepared = prepare(frame, sensor)
+    return contact_regions(replace(prepared, read_back=None)).centroid_index
+
+
+def test_another_glass_is_not_read_back(vhdta):
+    # the model's scratches subtracted where this glass has none read as dark streaks in
+    # the background, which light contact cannot make: the image is weighed
+    other = replace(vhdta, transducer=replace(vhdta.transducer, scratch_seed=1986))
+    raw, _ = _pressed(other, "punch", 5.0, (1e-3, 0.0))
+    assert extract(raw, vhdta).contact.centroid_index == _image_weighed(raw, vhdta)
+    own, _ = _pressed(vhdta, "punch", 5.0, (1e-3, 0.0))
+    assert extract(own, vhdta).contact.centroid_index != _image_weighed(own, vhdta)
+
+
+def test_a_read_back_far_from_the_image_centre_is_not_kept(vhdta):
+    # two pens far apart on a camera 0.7 grey levels brighter: under the union of their
+    # windows the offset weighs as much as the pens (15.6 taxels off); the image's centre
+    # lies more than two cover depths away, so the image is kept (2.65 taxels off)
+    x, y = vhdta.load_grid.coordinates()
+    pressure = sum(
+        vhdta.press(make_indenter("pen"), normal_force=force, position=at, rng=0).contact.pressure
+        for force, at in ((1.0, (-13e-3, -13e-3)), (0.5, (13e-3, 13e-3)))
+    )
+    frame = vhdta.frame_from_pressure(pressure, rng=3).raw + 0.7
+    centre = extract(frame, vhdta).contact.centroid_index
+    assert centre == _image_weighed(frame, vhdta)
+    truth = np.array([(pressure * x).sum(), (pressure * y).sum()]) / pressure.sum()
+    centroid_m = extract(frame, vhdta).contact.centroid_m
+    assert _error(centroid_m, truth, vhdta) < 3.0

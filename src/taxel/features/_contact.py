@@ -26,6 +26,11 @@ __all__ = [
     "signal_moments",
 ]
 
+# The read-back's centre of pressure is kept within this many cover depths of the image's
+_APART_DEPTHS = 2.0
+# ... and at least this many taxels (without a cover)
+_HALO_TAXELS = 2
+
 
 @record
 class ContactRegion:
@@ -254,8 +259,15 @@ def contact_regions(prepared: Prepared) -> Contact:
     contact = _one_region(prepared) if n == 1 else _several_regions(prepared)
     if prepared.read_back is not None:
         centre = pressure_centre(prepared, prepared.read_back)
-        if centre is not None:
-            return _centred(contact, centre, prepared)
+        # the same contact, weighed two ways: more than two cover depths from the image's
+        # centre (6.8 taxels at most on the 1287 vhdta128 frames of the features
+        # benchmark, 7.8 taxels to two depths), the read-back weighs what the frame's
+        # model gets wrong (uneven lighting, an offset under separate contacts), not the
+        # contact
+        if centre is not None and contact.centroid_index is not None:
+            depths = _APART_DEPTHS * prepared.cover_depth / prepared.mean_pitch
+            if math.dist(centre, contact.centroid_index) <= max(depths, _HALO_TAXELS):
+                return _centred(contact, centre, prepared)
     return contact
 
 
@@ -433,17 +445,21 @@ def find_contact(
     Given a sensor whose raw frame its transducer reads back to pressure (a textured
     FTIR camera behind an ideal readout, on a frame not calibrated; a tared frame's light
     is its step above the `reference`), the contact's centre of pressure is that
-    pressure's, not the image's: the grey level
-    follows the real contact area, which saturates, and light contact lies beyond the
-    mask. The frame is read back signed (noise below the unloaded level reads negative
-    and averages out), and weighted over the mask and over its bounding box grown by 0,
-    2, 4, ... taxels up to the reach of its load (3.5 cover depths); the smallest of these
-    windows is kept whose centre agrees with every larger one's within 3 noise sigmas
-    (Lepski's rule). A frame darker than the camera's unloaded level is not the model's:
-    its image is weighed. A brighter one, whose background is flat beyond the contact's
-    reach, has that level taken out when over a grey level; a texture pressed over the
-    whole array leaves no background to show it, and reads such an offset as light
-    contact: tare the frame (`reference`).
+    pressure's, not the image's: the grey level follows the real contact area, which
+    saturates, and light contact lies beyond the mask. The frame is read back signed
+    (noise below the unloaded level reads negative and averages out), and weighted over
+    the mask and over its bounding box grown by 0, 2, 4, 8, ... taxels up to the reach of
+    its load (3.5 cover depths); the smallest of these windows is kept whose centre
+    agrees with every larger one's within 3 noise sigmas (Lepski's rule).
+
+    The read-back assumes the model's unloaded level (its dark level and glass), which the
+    background beyond the contact's reach checks: darker than it, or streaked darker
+    (another glass), the frame is not the model's and its image is weighed; brighter and
+    flat (a camera's offset over a grey level), the level is taken out. A read-back more
+    than two cover depths from the image's centre is not kept either. What the check
+    cannot tell is uneven lighting (a ramp, vignetting: over 4 grey levels across the
+    array, a contact near the edge 1-8 taxels off) and an offset under a texture spread
+    over the array: tare such frames (`reference`), which measures their unloaded level.
 
     A calibrated image's force is summed over each region and its catchment: the taxels
     within 3.5 cover depths of it (at least 2 taxels; `catchment_reach`) nearer to it than

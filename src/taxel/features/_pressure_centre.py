@@ -8,9 +8,11 @@ Lepski's rule (Lepski, Mammen & Spokoiny, Ann. Statist. 25, 1997), the usual ans
 an estimate's bias is unknown but its noise is: the smallest window is kept whose centre
 agrees with every larger window's within their noise; where one does not, the larger
 windows have seen pressure it missed. No window reaches past the contact's load (3.5 cover
-depths), so that a defect or an offset far from the contact does not count. The pressure
-is the frame read back through the sensor's response (`_response`), signed, so that the
-background's noise averages out instead of pulling the centre towards the window's middle.
+depths), so that a defect far from the contact does not count. The pressure is the frame
+read back through the sensor's response (`_response`), signed, so that the background's
+noise averages out instead of pulling the centre towards the window's middle. The
+background beyond that reach checks the model's unloaded level, which the read-back
+assumes (`_background`).
 """
 
 from __future__ import annotations
@@ -24,8 +26,8 @@ from taxel.features._image import Prepared
 from taxel.features._moments import binary_moments
 from taxel.features._response import (
     ReadBack,
-    below_unloaded,
     grey_level_pressure,
+    light_above_unloaded,
     noise_pressure,
     signed_pressure,
 )
@@ -37,13 +39,20 @@ __all__ = ["pressure_centre"]
 # short of the reach of the contact's load (3.5 cover depths, see `catchment_reach`), and
 # by that reach: beyond it the cover spreads 2 % of a point load
 _RADII = (0, 2, 4, 8, 16, 32)
-# A camera brighter than the model everywhere (another dark level, a drift of the
-# lighting) adds a level to every window, which pulls each towards its middle. Where the
-# windows stop short of the whole array, the background beyond the contact's reach shows
-# it: when at least `_FAR_TAXELS` taxels lie there, spread by at most `_FLAT` noise sigmas
-# (flat, as noise alone is: 0.9 sigma on vhdta128; a texture's light contact spreads by
-# 2.3-2.6), its mean is taken out of every window when over `_OFFSET` grey levels
+# The background beyond the contact's reach tells a frame the model does not describe,
+# when at least `_FAR_TAXELS` taxels lie there (read on every `_SAMPLE`-th of them). Light
+# contact only brightens a taxel: a background darker than the unloaded level by over
+# `_DARK` grey levels, or with over `_STRAY` of its taxels `_CLIP` noise sigmas below it
+# (another glass's scratches: about 4 %), is not the model's, and the image is weighed.
+# A brighter camera (another dark level, a drift of the lighting) adds a level to every
+# window, which pulls each towards its middle: a background flat within `_FLAT` sigmas
+# (noise alone spreads by 0.9 sigma on vhdta128, a texture's light contact by 2.3-2.6)
+# and over `_OFFSET` grey levels is such an offset, taken out of every window
 _FAR_TAXELS = 256
+_SAMPLE = 3
+_DARK = 0.5
+_CLIP = 5.0
+_STRAY = 0.005
 _FLAT = 1.5
 _OFFSET = 1.0
 # Two centres agree when they lie within this many noise sigmas of their difference (each
@@ -83,19 +92,35 @@ def _windows(prepared: Prepared, reach: int) -> list[tuple[int, int, int, int]]:
     return boxes
 
 
-def _background(prepared: Prepared, pressure: np.ndarray, reach: int, noise: float) -> float:
-    """Mean signed pressure beyond `reach` of the contact, where none is felt, if flat [Pa].
-
-    0 when fewer than `_FAR_TAXELS` taxels lie there, or when they spread by more than
-    `_FLAT` noise sigmas (light contact, not an offset).
-    """
+def _beyond_reach(prepared: Prepared, reach: int) -> np.ndarray:
+    """Flat indices of the taxels beyond `reach` of every contact taxel (chessboard)."""
     side = 2 * reach + 1
     near = cv2.dilate(prepared.mask, cv2.getStructuringElement(cv2.MORPH_RECT, (side, side)))
-    far = (near == 0).view(np.uint8)
-    if cv2.countNonZero(far) < _FAR_TAXELS:
+    return np.flatnonzero(near.ravel() == 0)
+
+
+def _background(read: ReadBack, far: np.ndarray, grey_noise: float) -> float | None:
+    """The background's level above the unloaded one [grey levels], None if not the model's.
+
+    Over every `_SAMPLE`-th taxel of `far`, when there are at least `_FAR_TAXELS`: the mean
+    of those within `_CLIP` noise sigmas of their median. Light contact only brightens a
+    taxel: a background darker than the unloaded level by more than `_DARK`, or with more
+    than `_STRAY` of its taxels `_CLIP` sigmas below it (another glass, whose scratches
+    the model's pattern does not match), is not the model's (None). The level is returned
+    when the background is flat (spread within `_FLAT` sigmas, as noise alone is: a
+    camera's offset, not a texture's light contact) and over `_OFFSET`; else 0.
+    """
+    if far.size < _FAR_TAXELS:
         return 0.0
-    mean, spread = (float(v[0, 0]) for v in cv2.meanStdDev(pressure, mask=far))
-    return mean if spread <= _FLAT * noise else 0.0
+    light = light_above_unloaded(read, far[::_SAMPLE])
+    centre = float(np.median(light))
+    clip = _CLIP * grey_noise
+    inside = light[np.abs(light - centre) <= clip]
+    dark = np.count_nonzero(light < centre - clip) / light.size
+    level, spread = float(inside.mean()), float(inside.std())
+    if level < -_DARK or dark > _STRAY:
+        return None
+    return level if level > _OFFSET and spread <= _FLAT * grey_noise else 0.0
 
 
 def _mask_sums(prepared: Prepared, pressure: np.ndarray) -> tuple[float, ...]:
@@ -157,23 +182,28 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     (both axes together). The smallest window is kept whose centre lies within `_AGREE`
     times the noise of every larger window's (Lepski's rule, see the module notes).
     Windows whose pressure sums to nothing, or whose centre falls off the array, are
-    passed over; None when every window is, or when the frame's background is darker than
-    the sensor's unloaded level (`below_unloaded`): the frame is then not the model's,
-    and the image is weighed. A brighter background, flat beyond the reach, is a camera's
-    offset from the model: taken out when over a grey level (`_background`).
+    passed over; None when every window is, or when the background beyond the reach is
+    not the model's (`_background`: darker than its unloaded level, or another glass's):
+    the image is then weighed. A brighter background, flat beyond the reach, is a
+    camera's offset from the model, taken out when over a grey level (but under a texture
+    spread over the array, which leaves no background to tell it from its light contact).
     """
-    outside = (prepared.mask == 0).view(np.uint8)
-    if below_unloaded(read, outside):
-        return None
-    pressure = signed_pressure(read)
-    noise = noise_pressure(read, prepared.raw_noise)
+    grey_noise = prepared.raw_noise
+    if read.frame.dtype.kind in "iu":
+        grey_noise = max(grey_noise, 1.0 / math.sqrt(12.0))  # at least the rounding's
     reach = catchment_reach(prepared)
     windows = _windows(prepared, reach)
-    level = 0.0
-    if windows[-1] != (0, 0, *pressure.shape):  # (over the whole array, light contact)
-        level = _background(prepared, pressure, reach, noise)
-        if level < _OFFSET * grey_level_pressure(read):
-            level = 0.0
+    far = _beyond_reach(prepared, reach)
+    grey_level = _background(read, far, grey_noise)
+    if grey_level is None:
+        return None
+    pressure = signed_pressure(read)
+    # a contact whose reach spans the array and half of it (a texture) leaves no background
+    # to tell a camera's offset from its own light contact
+    if windows[-1] == (0, 0, *pressure.shape) and far.size < pressure.size / 2:
+        grey_level = 0.0
+    level = grey_level * grey_level_pressure(read)
+    noise = noise_pressure(read, prepared.raw_noise)
     candidates = [_mask_sums(prepared, pressure), *_box_sums(pressure, windows)]
     centres, moved = [], []
     rows, cols = pressure.shape

@@ -22,16 +22,13 @@ from taxel.transducers import FtirTransducer
 
 __all__ = [
     "ReadBack",
-    "below_unloaded",
     "grey_level_pressure",
+    "light_above_unloaded",
     "noise_pressure",
     "read_back",
     "signed_pressure",
 ]
 
-# A frame whose background lies this far below the unloaded grey level [DN] is not one of
-# the model's (a camera reads below it by its noise alone, which the mean takes out)
-_DARK_SLACK = 0.5
 # The noise of an integer grey level at least: its rounding's [DN]
 _ROUNDING = 1.0 / math.sqrt(12.0)
 
@@ -154,30 +151,21 @@ def signed_pressure(read: ReadBack) -> np.ndarray:
     return pressure
 
 
-def below_unloaded(read: ReadBack, outside: np.ndarray) -> bool:
-    """Whether the frame's background is darker than its unloaded level.
+def light_above_unloaded(read: ReadBack, where: np.ndarray) -> np.ndarray:
+    """Grey levels above the unloaded level [DN] of the pixels at flat indices `where`.
 
-    The mean grey level over `outside` (uint8, nonzero off the contact) more than
-    `_DARK_SLACK` below the unloaded level there: the tare's, or the transducer's dark
-    level and its glass's scratches. The frame is then not the model's (another camera's
-    dark level, a synthetic image), and its read-back would give the whole background a
-    negative pressure.
+    The unloaded level is the tare's, or the transducer's dark level and its glass's
+    scratches (float64).
     """
     transducer, frame, tare = read.transducer, read.frame, read.tare
-    count = cv2.countNonZero(outside)
-    if count == 0:
-        return False
-    image = frame if frame.dtype == np.uint8 else frame.astype(np.float32)
-    level = cv2.mean(image, mask=outside)[0]
+    grey = frame.ravel()[where].astype(np.float64)
     if tare is not None:
-        unloaded = cv2.mean(tare.astype(np.float32), mask=outside)[0]
-    else:
-        unloaded = transducer.dark_level
-        if transducer.scratch_count:
-            where, scratch = _scratched(transducer, frame.shape)
-            span = transducer.bright_level - transducer.dark_level
-            unloaded += span * float(scratch @ (outside.ravel()[where] > 0)) / count
-    return level < unloaded - _DARK_SLACK
+        return grey - tare.ravel()[where]
+    grey -= transducer.dark_level
+    if transducer.scratch_count:
+        span = transducer.bright_level - transducer.dark_level
+        grey -= span * transducer.scratches(frame.shape).ravel()[where]
+    return grey
 
 
 def grey_level_pressure(read: ReadBack) -> float:
