@@ -13,7 +13,12 @@ from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._moments import binary_moments
 from taxel.features._pressure_centre import pressure_centre
 from taxel.features._record import record
-from taxel.features._window import catchment_reach, contact_box, contact_window
+from taxel.features._window import (
+    catchment_reach,
+    contact_box,
+    contact_window,
+    depths_in_taxels,
+)
 
 __all__ = [
     "Contact",
@@ -28,8 +33,6 @@ __all__ = [
 
 # The read-back's centre of pressure is kept within this many cover depths of the image's
 _APART_DEPTHS = 2.0
-# ... and at least this many taxels (without a cover)
-_HALO_TAXELS = 2
 
 
 @record
@@ -265,8 +268,8 @@ def contact_regions(prepared: Prepared) -> Contact:
         # model gets wrong (uneven lighting, an offset under separate contacts), not the
         # contact
         if centre is not None and contact.centroid_index is not None:
-            depths = _APART_DEPTHS * prepared.cover_depth / prepared.mean_pitch
-            if math.dist(centre, contact.centroid_index) <= max(depths, _HALO_TAXELS):
+            apart = math.dist(centre, contact.centroid_index)
+            if apart <= depths_in_taxels(prepared, _APART_DEPTHS):
                 return _centred(contact, centre, prepared)
     return contact
 

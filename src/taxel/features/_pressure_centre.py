@@ -27,8 +27,8 @@ from taxel.features._moments import binary_moments
 from taxel.features._response import (
     ReadBack,
     grey_level_pressure,
+    grey_noise,
     light_above_unloaded,
-    noise_pressure,
     signed_pressure,
 )
 from taxel.features._window import catchment_reach, contact_box, contact_window
@@ -188,13 +188,11 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     camera's offset from the model, taken out when over a grey level (but under a texture
     spread over the array, which leaves no background to tell it from its light contact).
     """
-    grey_noise = prepared.raw_noise
-    if read.frame.dtype.kind in "iu":
-        grey_noise = max(grey_noise, 1.0 / math.sqrt(12.0))  # at least the rounding's
+    noise_grey = grey_noise(read, prepared.raw_noise)
     reach = catchment_reach(prepared)
     windows = _windows(prepared, reach)
     far = _beyond_reach(prepared, reach)
-    grey_level = _background(read, far, grey_noise)
+    grey_level = _background(read, far, noise_grey)
     if grey_level is None:
         return None
     pressure = signed_pressure(read)
@@ -203,7 +201,7 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     if windows[-1] == (0, 0, *pressure.shape) and far.size < pressure.size / 2:
         grey_level = 0.0
     level = grey_level * grey_level_pressure(read)
-    noise = noise_pressure(read, prepared.raw_noise)
+    noise = noise_grey * grey_level_pressure(read)
     candidates = [_mask_sums(prepared, pressure), *_box_sums(pressure, windows)]
     centres, moved = [], []
     rows, cols = pressure.shape

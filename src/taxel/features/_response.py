@@ -23,8 +23,8 @@ from taxel.transducers import FtirTransducer
 __all__ = [
     "ReadBack",
     "grey_level_pressure",
+    "grey_noise",
     "light_above_unloaded",
-    "noise_pressure",
     "read_back",
     "signed_pressure",
 ]
@@ -177,11 +177,6 @@ def grey_level_pressure(read: ReadBack) -> float:
     return slope * math.sqrt(math.pi) / 2.0 / span
 
 
-def noise_pressure(read: ReadBack, grey_noise: float) -> float:
-    """The noise of one pixel's pressure at the unloaded level [Pa], from the grey's [DN].
-
-    An integer frame's noise is taken as its rounding's at least.
-    """
-    if read.frame.dtype.kind in "iu":
-        grey_noise = max(grey_noise, _ROUNDING)
-    return grey_noise * grey_level_pressure(read)
+def grey_noise(read: ReadBack, noise: float) -> float:
+    """A frame's noise [DN], an integer frame's taken as its rounding's at least."""
+    return max(noise, _ROUNDING) if read.frame.dtype.kind in "iu" else noise

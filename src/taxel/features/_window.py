@@ -21,6 +21,7 @@ __all__ = [
     "contact_box",
     "contact_hull",
     "contact_window",
+    "depths_in_taxels",
 ]
 
 # Images of at most this many taxels are read whole (see `contact_window`).
@@ -37,8 +38,12 @@ def catchment_reach(prepared: Prepared) -> int:
     beyond a radius R is (1 + R^2 / d^2)^(-3/2): 2 % at R = 3.5 d. Without a cover (a bare
     pitch, a pressure map) the smoothing's reach, 2 taxels.
     """
-    depths = _TAIL_DEPTHS * prepared.cover_depth / prepared.mean_pitch
-    return max(_HALO_TAXELS, math.ceil(depths - 1e-9))
+    return math.ceil(depths_in_taxels(prepared, _TAIL_DEPTHS) - 1e-9)
+
+
+def depths_in_taxels(prepared: Prepared, depths: float) -> float:
+    """`depths` cover depths in taxels, at least `_HALO_TAXELS` (without a cover, that)."""
+    return max(_HALO_TAXELS, depths * prepared.cover_depth / prepared.mean_pitch)
 
 
 def contact_area(prepared: Prepared) -> int:
