@@ -4,7 +4,9 @@ An image's grey levels are not pressure: an FTIR camera's follow the real contac
 which saturates (Persson's erf law), so that the highest pressures weigh too little in the
 image, and its glass's scratches add light no contact makes. Given a sensor whose raw
 frame its transducer reads back to pressure (`read_back`), the contact's centre of
-pressure is taken from that pressure instead (`taxel.features._pressure_centre`).
+pressure is taken from that pressure instead (`taxel.features._pressure_centre`). That
+pressure is the one the cover carries down to the glass, the sensor's forward model's
+reading (`forward_model`), which tells what the cover spreads beyond the array's edges.
 """
 
 from __future__ import annotations
@@ -18,10 +20,12 @@ import cv2
 import numpy as np
 from scipy import special
 
+from taxel.reconstruction import ForwardModelSpec, as_forward_model_spec
 from taxel.transducers import FtirTransducer
 
 __all__ = [
     "ReadBack",
+    "forward_model",
     "grey_level_pressure",
     "grey_noise",
     "light_above_unloaded",
@@ -46,11 +50,15 @@ class ReadBack:
     tare : numpy.ndarray or None
         The sensor's unloaded frame (or a mean of several) [DN], when the frame was tared:
         the frame's unloaded level, in place of the model's dark level and scratches.
+    sensor : object or None
+        The sensor the frame came from, whose forward model (`forward_model`) reads the
+        pressure at the glass.
     """
 
     transducer: FtirTransducer
     frame: np.ndarray
     tare: np.ndarray | None = None
+    sensor: Any = None
 
 
 def read_back(
@@ -76,7 +84,32 @@ def read_back(
         or _shape_of(sensor_or_pitch) != frame.shape
     ):
         return None
-    return ReadBack(transducer, frame, tare)
+    return ReadBack(transducer, frame, tare, sensor_or_pitch)
+
+
+def forward_model(read: ReadBack) -> ForwardModelSpec | None:
+    """The sensor's forward model, when its readings are the read-back's pressure.
+
+    That is when the sensor has a forward model of one reading per taxel, of the frame's
+    shape, whose reading is the pressure felt at the cover's depth (``"stress"``); None
+    otherwise. Kept for the sensors seen last (the model costs ~25 us to build).
+    """
+    try:
+        hash(read.sensor)
+    except TypeError:
+        return _model_of(read.sensor, read.frame.shape)
+    return _kept_model_of(read.sensor, read.frame.shape)
+
+
+def _model_of(sensor: Any, shape: tuple[int, ...]) -> ForwardModelSpec | None:
+    try:
+        model = as_forward_model_spec(sensor)
+    except (TypeError, ValueError):  # no forward model of one reading per taxel
+        return None
+    return model if model.shape == shape and model.quantity == "stress" else None
+
+
+_kept_model_of = functools.lru_cache(maxsize=8)(_model_of)
 
 
 def _shape_of(sensor: Any) -> tuple[int, ...] | None:

@@ -31,6 +31,7 @@ penalty is lambda^2 |A|^2/|L|^2 |L x|^2) or, for total variation, mu [Pa];
 """
 
 from taxel.reconstruction._admm import ADMMSolver
+from taxel.reconstruction._beyond import extend_readings
 from taxel.reconstruction._calibrated import calibrated_readings
 from taxel.reconstruction._choice import RULES, ParameterCurve, lcurve_curvature
 from taxel.reconstruction._frames import LARGEST_REGULARIZATION
@@ -72,6 +73,7 @@ __all__ = [
     "calibrated_readings",
     "estimate_noise",
     "estimate_noise_level",
+    "extend_readings",
     "forward_model_preset",
     "forward_operator",
     "lcurve_curvature",
