@@ -50,10 +50,10 @@ def test_a_texture_is_centred_on_its_pressure_not_on_its_image(vhdta):
     raw, truth = _pressed(vhdta, "foam", 20.0, (1e-3, -2e-3))
     through = extract(raw, vhdta).contact
     weighed = extract(raw, vhdta.taxel_pitch, defects=True).contact  # the image weighed
-    assert _error(through.centroid_m, truth, vhdta) < 0.2  # 0.09 taxel
+    assert _error(through.centroid_m, truth, vhdta) < 0.2  # 0.12 taxel
     assert _error(weighed.centroid_m, truth, vhdta) > 1.0  # 1.15 taxel
     # with 4 grey levels of noise (4 % of the span) every window past the mask is noisier:
-    # 0.55-1.05 taxel on these draws, still closer than the image's 0.78-1.54
+    # 0.10-0.91 taxel on these draws, still closer than the image's 0.78-1.54
     through, weighed = [], []
     for seed in range(4):
         noise = np.random.default_rng(seed).normal(0.0, 4.0, raw.shape)
