@@ -7,9 +7,10 @@ import pytest
 from scipy import special
 
 from taxel.features import contact_regions, extract, prepare
-from taxel.features._pressure_centre import _box_counts, _box_sums
-from taxel.features._response import read_back, signed_pressure
+from taxel.features._pressure_centre import _box_counts, _box_sums, _grown
+from taxel.features._response import forward_model, read_back, signed_pressure
 from taxel.mechanics import make_indenter
+from taxel.reconstruction import extend_readings, spec_from_sensor
 from taxel.sensor import ArrayGeometry, make_sensor
 
 
@@ -131,6 +132,29 @@ def test_a_contact_the_edge_cuts_is_centred_on_its_pressure(vhdta):
         assert _error(extract(frame.raw, vhdta).contact.centroid_m, truth, vhdta) < 0.25
 
 
+@pytest.mark.parametrize("reach", [13, 14])  # odd or even: blocks straddle the array's edge
+def test_the_grown_array_on_blocks_keeps_the_centre(vhdta, reach):
+    # solved on 2 x 2 blocks of taxels, beyond the edges it holds 94-96 % of what the
+    # solution on every taxel holds; the centres of the two grown arrays are 0.02 taxel apart
+    for name, position in (("punch", (16e-3, 3e-3)), ("washer", (0.0, 15.5e-3))):
+        frame = vhdta.press(
+            make_indenter(name), normal_force=10.0, position=position, angle=0.3, rng=5
+        )
+        read = prepare(frame.raw, vhdta).read_back
+        pressure, model = signed_pressure(read), forward_model(read)
+        fine, blocks = extend_readings(model, pressure, reach), _grown(model, pressure, reach)
+        assert blocks.shape == fine.shape == (128 + 2 * reach,) * 2
+        np.testing.assert_array_equal(blocks[reach:-reach, reach:-reach], pressure)
+        beyond = (blocks.sum() - pressure.sum()) / (fine.sum() - pressure.sum())
+        assert 0.9 < beyond < 1.0
+
+        def centre(grown):
+            rows, cols = np.indices(grown.shape)
+            return np.array([(grown * rows).sum(), (grown * cols).sum()]) / grown.sum()
+
+        assert np.abs(centre(blocks) - centre(fine)).max() < 0.05
+
+
 def test_window_sums_from_the_integral_image():
     rng = np.random.default_rng(1)
     pressure = rng.normal(size=(20, 30)).astype(np.float32)
@@ -190,6 +214,32 @@ def test_a_duck_typed_sensor_may_give_its_shape_as_an_array(vhdta):
     assert read is not None
     with_array = extract(raw, Camera()).contact.centroid_index
     assert with_array == pytest.approx(extract(raw, vhdta).contact.centroid_index, abs=1e-9)
+
+
+def test_without_a_forward_model_the_windows_stop_at_the_array_s_edges(vhdta):
+    frame = vhdta.press(
+        make_indenter("punch"), normal_force=10.0, position=(16e-3, 3e-3), angle=0.3, rng=5
+    )
+    x, y = vhdta.load_grid.coordinates()
+    pressure = frame.contact.pressure
+    truth = np.array([(pressure * x).sum(), (pressure * y).sum()]) / pressure.sum()
+
+    class Camera:  # a camera of its own: no forward model
+        taxel_pitch = vhdta.taxel_pitch
+        cover = vhdta.cover
+        transducer = vhdta.transducer
+        readout = vhdta.readout
+        shape = vhdta.shape
+
+    class ModelledCamera(Camera):
+        def forward_model_spec(self):
+            return spec_from_sensor(vhdta)
+
+    assert forward_model(read_back(Camera(), frame.raw, calibrated=False)) is None
+    assert _error(extract(frame.raw, Camera()).contact.centroid_m, truth, vhdta) > 0.5  # 0.78
+    modelled = extract(frame.raw, ModelledCamera()).contact.centroid_m
+    assert modelled == pytest.approx(extract(frame.raw, vhdta).contact.centroid_m, abs=1e-12)
+    assert _error(modelled, truth, vhdta) < 0.25
 
 
 def test_a_reference_from_the_same_camera_takes_its_offset_under_a_texture(vhdta):
