@@ -7,8 +7,8 @@ import pytest
 from scipy import special
 
 from taxel.features import contact_regions, extract, prepare
-from taxel.features._pressure_centre import _box_counts, _box_sums, _grown
-from taxel.features._response import forward_model, read_back, signed_pressure
+from taxel.features._pressure_centre import _background, _box_counts, _box_sums, _grown
+from taxel.features._response import ReadBack, forward_model, read_back, signed_pressure
 from taxel.mechanics import make_indenter
 from taxel.reconstruction import extend_readings, spec_from_sensor
 from taxel.sensor import ArrayGeometry, make_sensor
@@ -269,6 +269,34 @@ def test_another_glass_is_not_read_back(vhdta):
     assert extract(raw, vhdta).contact.centroid_index == _image_weighed(raw, vhdta)
     own, _ = _pressed(vhdta, "punch", 5.0, (1e-3, 0.0))
     assert extract(own, vhdta).contact.centroid_index != _image_weighed(own, vhdta)
+
+
+def test_a_texture_lighting_the_background_is_not_another_glass(vhdta):
+    # light contact only brightens: beyond a texture's reach most taxels are lit (here
+    # by 5 grey levels) and the noise leaves a few a grey level below the unloaded one,
+    # which are no dark streaks; 10 levels below it they are
+    tare = np.full((128, 128), 24, np.uint8)
+    frame = tare + np.uint8(5)
+    frame.flat[::50] = 23
+    far = np.arange(frame.size)
+    assert _background(ReadBack(vhdta.transducer, frame, tare), far, 1.0) is not None
+    frame.flat[::50] = 14
+    assert _background(ReadBack(vhdta.transducer, frame, tare), far, 1.0) is None
+
+
+def test_a_texture_s_faint_light_beyond_its_reach_is_not_an_offset(vhdta):
+    # coarse foam at 30 N lights the 23 % of the array beyond its reach by 1.2 grey
+    # levels on average, under 2.4 levels of noise: flat as a camera's offset, but taken out
+    # as one it put the centre 3.1 taxels off (1.2 now: the texture's light contact
+    # reaches farther than its mask's reach)
+    foam = make_indenter("foam", cell_size=2.12e-3, depth=0.484e-3, seed=779)
+    frame = vhdta.press(foam, normal_force=30.0, position=(6.6e-3, 0.74e-3), angle=3.1, rng=5)
+    x, y = vhdta.load_grid.coordinates()
+    pressure = frame.contact.pressure
+    truth = np.array([(pressure * x).sum(), (pressure * y).sum()]) / pressure.sum()
+    noise = np.random.default_rng(1).normal(0.0, 2.0, frame.raw.shape)
+    raw = np.clip(frame.raw + noise, 0, 255).round().astype(np.uint8)
+    assert _error(extract(raw, vhdta).contact.centroid_m, truth, vhdta) < 1.5
 
 
 def test_a_read_back_far_from_the_image_centre_is_not_kept(vhdta):
