@@ -453,12 +453,18 @@ def find_contact(
     (noise below the unloaded level reads negative and averages out), and weighted over
     the mask and over its bounding box grown by 0, 2, 4, 8, ... taxels up to the reach of
     its load (3.5 cover depths); the smallest of these windows is kept whose centre
-    agrees with every larger one's within 3 noise sigmas (Lepski's rule).
+    agrees with every larger one's within 2.5 noise sigmas (Lepski's rule). Where that
+    reach crosses the array's edge and the sensor has a forward model, the windows run on
+    into the array grown by it, with what the load on the array that explains the frame
+    presses there (`taxel.reconstruction.extend_readings`): the cover spreads a load near
+    the edge beyond it, where no taxel feels it. That assumes no load beyond the edge; a
+    plate pressed across the edge has some, which is then read as pressing at the edge.
 
     The read-back assumes the model's unloaded level (its dark level and glass), which the
     background beyond the contact's reach checks: darker than it, or streaked darker
     (another glass), the frame is not the model's and its image is weighed; brighter and
-    flat (a camera's offset over a grey level), the level is taken out. A read-back more
+    flat (a camera's offset over a grey level, with half the array or more beyond the
+    reach), the level is taken out. A read-back more
     than two cover depths from the image's centre is not kept either. What the check
     cannot tell is uneven lighting (a ramp, vignetting: over 4 grey levels across the
     array, a contact near the edge 1-8 taxels off) and an offset under a texture spread
