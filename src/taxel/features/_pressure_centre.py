@@ -56,7 +56,9 @@ _RADII = (0, 2, 4, 8, 16, 32)
 # window, which pulls each towards its middle: a background flat within `_FLAT` sigmas
 # (noise alone spreads by 0.9 sigma on vhdta128, a texture's light contact by 2.3-2.6)
 # and over `_OFFSET` grey levels is such an offset, taken out of every window when the
-# background is half the array or more (`pressure_centre`)
+# background is half the array or more (`pressure_centre`). Less background than that, lit
+# above the unloaded level by `_LIT` sigmas of its mean, is a texture's light contact,
+# which reaches farther than its mask's reach: the whole array is one window more
 _FAR_TAXELS = 256
 _SAMPLE = 3
 _DARK = 0.5
@@ -64,6 +66,7 @@ _CLIP = 5.0
 _STRAY = 0.005
 _FLAT = 1.5
 _OFFSET = 1.0
+_LIT = 4.0
 # Two centres agree when they lie within this many noise sigmas of their difference (each
 # centre's noise over both axes together, added in quadrature). Chosen on the features
 # benchmark, windows grown beyond the edges, over 1.5, 2 and 3: centroid p95 / max [taxel]
@@ -109,21 +112,22 @@ def _beyond_reach(prepared: Prepared, reach: int) -> np.ndarray:
     return np.flatnonzero(near.ravel() == 0)
 
 
-def _background(read: ReadBack, far: np.ndarray, grey_noise: float) -> float | None:
-    """The background's level above the unloaded one [grey levels], None if not the model's.
+def _background(read: ReadBack, far: np.ndarray, grey_noise: float) -> tuple[float, bool] | None:
+    """The background's offset [grey levels] and whether it is lit; None if not the model's.
 
-    Over every `_SAMPLE`-th taxel of `far`, when there are at least `_FAR_TAXELS`: the mean
-    of those within `_CLIP` noise sigmas of their median. Light contact only brightens a
-    taxel: a background darker than the unloaded level by more than `_DARK`, or with more
-    than `_STRAY` of its taxels `_CLIP` sigmas below it (or below their median, when that
-    is darker; another glass, whose scratches the model's pattern does not match), is not
-    the model's (None): a texture's light contact beyond the reach lifts the median, not
-    the unloaded level. The level is returned
-    when the background is flat (spread within `_FLAT` sigmas, as noise alone is: a
-    camera's offset, not a texture's light contact) and over `_OFFSET`; else 0.
+    Over every `_SAMPLE`-th taxel of `far`, when there are at least `_FAR_TAXELS` (else
+    (0, False)): the mean of those within `_CLIP` noise sigmas of their median. Light
+    contact only brightens a taxel: a background darker than the unloaded level by more
+    than `_DARK`, or with more than `_STRAY` of its taxels `_CLIP` sigmas below it (or below
+    their median, when that is darker; another glass, whose scratches the model's pattern
+    does not match), is not the model's (None): a texture's light contact beyond the reach
+    lifts the median, not the unloaded level. The offset is that mean when the background
+    is flat (spread within `_FLAT` sigmas, as noise alone is: a camera's offset, not a
+    texture's light contact) and over `_OFFSET`, else 0. Lit: the mean is over `_LIT`
+    times its own noise.
     """
     if far.size < _FAR_TAXELS:
-        return 0.0
+        return 0.0, False
     light = light_above_unloaded(read, far[::_SAMPLE])
     centre = float(np.median(light))
     clip = _CLIP * grey_noise
@@ -132,7 +136,8 @@ def _background(read: ReadBack, far: np.ndarray, grey_noise: float) -> float | N
     level, spread = float(inside.mean()), float(inside.std())
     if level < -_DARK or dark > _STRAY:
         return None
-    return level if level > _OFFSET and spread <= _FLAT * grey_noise else 0.0
+    offset = level if level > _OFFSET and spread <= _FLAT * grey_noise else 0.0
+    return offset, level > _LIT * grey_noise / math.sqrt(inside.size)
 
 
 def _mask_sums(prepared: Prepared, pressure: np.ndarray) -> tuple[float, ...]:
@@ -230,18 +235,23 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     noise_grey = grey_noise(read, prepared.raw_noise)
     reach = catchment_reach(prepared)
     far = _beyond_reach(prepared, reach)
-    grey_level = _background(read, far, noise_grey)
-    if grey_level is None:
+    background = _background(read, far, noise_grey)
+    if background is None:
         return None
+    grey_level, lit = background
     pressure = signed_pressure(read)
     rows, cols = shape = pressure.shape
     boxes = _windows(prepared, reach)
-    on_array = [_clipped(box, shape) for box in boxes]
     # a contact whose reach covers half the array or more (a texture) leaves too little
     # background to tell a camera's offset from its own faint light contact (foam at 30 N
-    # lit the other 23 % by 1.2 grey levels: taken out, 3.1 taxels off)
+    # lit the other 23 % by 1.2 grey levels: taken out, 3.1 taxels off); lit, it presses
+    # beyond the reach, and the whole array is a window too (a screen 1.63 taxels off
+    # with the reach's windows alone, 0.08 with it; the foam 0.04)
     if far.size < pressure.size / 2:
         grey_level = 0.0
+        if lit:
+            boxes.append((-reach, -reach, rows + reach, cols + reach))
+    on_array = [_clipped(box, shape) for box in boxes]
     if grey_level:
         pressure = pressure - np.float32(grey_level * grey_level_pressure(read))
     noise = noise_grey * grey_level_pressure(read)
