@@ -2,6 +2,7 @@
 
 from dataclasses import replace
 
+import cv2
 import numpy as np
 import pytest
 from scipy import special
@@ -142,7 +143,9 @@ def test_the_grown_array_on_blocks_keeps_the_centre(vhdta, reach):
         )
         read = prepare(frame.raw, vhdta).read_back
         pressure, model = signed_pressure(read), forward_model(read)
-        fine, blocks = extend_readings(model, pressure, reach), _grown(model, pressure, reach)
+        blocks = _grown(model, pressure, reach)
+        fine = extend_readings(model, cv2.medianBlur(pressure, 3), reach)  # as `_grown` does
+        fine[reach:-reach, reach:-reach] = pressure
         assert blocks.shape == fine.shape == (128 + 2 * reach,) * 2
         np.testing.assert_array_equal(blocks[reach:-reach, reach:-reach], pressure)
         beyond = (blocks.sum() - pressure.sum()) / (fine.sum() - pressure.sum())
@@ -240,6 +243,51 @@ def test_without_a_forward_model_the_windows_stop_at_the_array_s_edges(vhdta):
     modelled = extract(frame.raw, ModelledCamera()).contact.centroid_m
     assert modelled == pytest.approx(extract(frame.raw, vhdta).contact.centroid_m, abs=1e-12)
     assert _error(modelled, truth, vhdta) < 0.25
+
+
+def test_a_hot_pixel_is_not_load_at_the_edge_or_in_the_windows(vhdta):
+    # an edge near the array's bottom edge: a hot pixel on the edge row was carried beyond
+    # it by the load that explains it (0.46 taxel off), one far up among the windows
+    # weighed as load (0.22 off); both are defects the cover cannot make (0.03 off)
+    pitch = vhdta.taxel_pitch[0]
+    frame = vhdta.press(
+        make_indenter("edge"), normal_force=13.0, position=(14 * pitch, 61.5 * pitch),
+        angle=1.2, rng=1,
+    )  # fmt: skip
+    x, y = vhdta.load_grid.coordinates()
+    pressure = frame.contact.pressure
+    truth = np.array([(pressure * x).sum(), (pressure * y).sum()]) / pressure.sum()
+    clean = _error(extract(frame.raw, vhdta).contact.centroid_m, truth, vhdta)
+    assert clean < 0.05
+    for row in (127, 126, 0):
+        hot = frame.raw.copy()
+        hot[row, 88] = 255
+        assert _error(extract(hot, vhdta).contact.centroid_m, truth, vhdta) < clean + 0.02
+
+
+def test_a_forward_model_that_does_not_fit_the_sensor_is_not_used(vhdta):
+    raw, _ = _pressed(vhdta, "punch", 5.0, (1e-3, 0.0))
+
+    class Camera:
+        taxel_pitch = vhdta.taxel_pitch
+        cover = vhdta.cover
+        transducer = vhdta.transducer
+        readout = vhdta.readout
+        shape = vhdta.shape
+        spec = spec_from_sensor(vhdta)
+
+        def forward_model_spec(self):
+            if self.spec is None:
+                raise NotImplementedError("no model of this camera")
+            return self.spec
+
+    camera = Camera()
+    assert forward_model(read_back(camera, raw, calibrated=False)) == camera.spec
+    camera.spec = None  # asked for each time: a duck-typed sensor may change
+    assert forward_model(read_back(camera, raw, calibrated=False)) is None
+    extract(raw, camera)
+    camera.spec = spec_from_sensor(vhdta).with_changes(taxel_pitch=0.2578125)  # in mm
+    assert forward_model(read_back(camera, raw, calibrated=False)) is None
 
 
 def test_a_reference_from_the_same_camera_takes_its_offset_under_a_texture(vhdta):

@@ -464,11 +464,12 @@ def find_contact(
     background beyond the contact's reach checks: darker than it, or streaked darker
     (another glass), the frame is not the model's and its image is weighed; brighter and
     flat (a camera's offset over a grey level, with half the array or more beyond the
-    reach), the level is taken out. A read-back more
-    than two cover depths from the image's centre is not kept either. What the check
-    cannot tell is uneven lighting (a ramp, vignetting: over 4 grey levels across the
-    array, a contact near the edge 1-8 taxels off) and an offset under a texture spread
-    over the array: tare such frames (`reference`), which measures their unloaded level.
+    reach), the level is taken out. A read-back more than two cover depths from the
+    image's centre is not kept either. What the check cannot tell is uneven lighting (a
+    ramp, vignetting: a ramp of 4 grey levels across the array put washers, cans and foam
+    up to 28 taxels off, punches and pens within 0.7; median 1.8 over 30 such frames) and
+    an offset under a texture spread over the array: tare such frames (`reference`), which
+    measures their unloaded level.
 
     A calibrated image's force is summed over each region and its catchment: the taxels
     within 3.5 cover depths of it (at least 2 taxels; `catchment_reach`) nearer to it than

@@ -21,6 +21,7 @@ import numpy as np
 from scipy import special
 
 from taxel.reconstruction import ForwardModelSpec, as_forward_model_spec
+from taxel.sensor import TactileSensor
 from taxel.transducers import FtirTransducer
 
 __all__ = [
@@ -91,20 +92,23 @@ def forward_model(read: ReadBack) -> ForwardModelSpec | None:
     """The sensor's forward model, when its readings are the read-back's pressure.
 
     That is when the sensor has a forward model of one reading per taxel, of the frame's
-    shape, whose reading is the pressure felt at the cover's depth (``"stress"``); None
-    otherwise. Kept for the sensors seen last (the model costs ~25 us to build).
+    shape and the sensor's pitch, whose reading is the pressure felt at the cover's depth
+    (``"stress"``); None otherwise. A `TactileSensor`'s is kept for the sensors seen last
+    (the model costs ~25 us to build); another sensor's is asked for each time, as it may
+    have changed.
     """
-    try:
-        hash(read.sensor)
-    except TypeError:
-        return _model_of(read.sensor, read.frame.shape)
-    return _kept_model_of(read.sensor, read.frame.shape)
+    if isinstance(read.sensor, TactileSensor):
+        return _kept_model_of(read.sensor, read.frame.shape)
+    return _model_of(read.sensor, read.frame.shape)
 
 
 def _model_of(sensor: Any, shape: tuple[int, ...]) -> ForwardModelSpec | None:
     try:
         model = as_forward_model_spec(sensor)
-    except (TypeError, ValueError):  # no forward model of one reading per taxel
+    except (TypeError, ValueError, NotImplementedError):  # no forward model of this kind
+        return None
+    pitch = getattr(sensor, "taxel_pitch", None)
+    if pitch is not None and not np.allclose(pitch, model.taxel_pitch, rtol=1e-6, atol=0.0):
         return None
     return model if model.shape == shape and model.quantity == "stress" else None
 
