@@ -17,8 +17,8 @@ pressure at the glass lies beyond it, felt by no taxel: the array is grown by th
 with what the load on the array that explains the frame presses there
 (`taxel.reconstruction.extend_readings`; no load beyond the array), and the windows run
 into it. On the features benchmark's 1008 vhdta128 frames that takes the centroid's p95
-from 0.56 to 0.43 taxel (0.39 with `_AGREE` chosen anew), below the 0.59 of weighing the
-exact felt pressure over the whole array.
+from 0.56 to 0.43 taxel (0.38 with `_AGREE` chosen anew and defects taken out), below the
+0.59 of weighing the exact felt pressure over the whole array.
 """
 
 from __future__ import annotations
