@@ -9,9 +9,10 @@ load on the array, and that load is the one that explains the array's readings: 
 zero-boundary Tikhonov problem min |A x - b|^2 + lambda^2 |A|^2 |x|^2, solved by
 conjugate gradients on its normal equations (scipy), preconditioned by the same problem
 with the load mirrored about the edges, which the DCT diagonalizes (exact but near the
-edges), then the forward model of the array grown by the margin applied to it. Its
-readings outside the array are smooth sums of the load near the edge: the small lambda and
-the early stop of the iterations keep the deconvolution's noise out of them.
+edges; `taxel.reconstruction._spectral`, a finer load grid too), then the forward model of
+the array grown by the margin applied to it. Its readings outside the array are smooth
+sums of the load near the edge: the small lambda and the early stop of the iterations
+keep the deconvolution's noise out of them.
 """
 
 from __future__ import annotations
@@ -21,12 +22,12 @@ from dataclasses import replace
 from typing import Any
 
 import numpy as np
-from scipy import fft
 from scipy.sparse import linalg
 
 from taxel._validation import as_finite_array, check_integer, check_positive
 from taxel.reconstruction._operator import SensorOperator, forward_operator
 from taxel.reconstruction._spec import ForwardModelSpec, as_forward_model_spec
+from taxel.reconstruction._spectral import Spectrum, build_spectrum
 
 __all__ = ["extend_readings"]
 
@@ -43,11 +44,11 @@ _MAX_ITERATIONS = 200
 @functools.lru_cache(maxsize=8)
 def _operators(
     spec: ForwardModelSpec, margin: int
-) -> tuple[SensorOperator, SensorOperator, float, np.ndarray | None]:
-    """The array's zero-boundary operator, the grown array's, |A|^2 and A^T A's DCT spectrum.
+) -> tuple[SensorOperator, SensorOperator, float, Spectrum]:
+    """The operators and factors `extend_readings` needs for a sensor (built once).
 
-    The spectrum is that of the reflecting model (`forward_operator`), None when the load
-    grid is finer than the taxels' (its block averaging is not diagonal in the DCT).
+    The array's zero-boundary operator, the grown array's, |A|^2, and the reflecting
+    model's DCT factorization (`build_spectrum`), whose inverse is the preconditioner.
     """
     # FFT-based: a dense matrix (`forward_operator`'s choice up to 4096 cells) costs more
     # per product from about 32 x 32 cells on
@@ -58,11 +59,8 @@ def _operators(
     # |A| is its largest singular value, a uniform load's reading far from the edges
     # (a stress reading of a uniform pressure is that pressure: 1)
     norm = float(np.abs(outer.apply(np.ones(grown.load_shape))).max())
-    spectrum = None
-    if spec.oversampling == 1:
-        eigenvalues = forward_operator(spec, boundary="reflect", representation="fast").eigenvalues
-        spectrum = None if eigenvalues is None else eigenvalues**2
-    return inner, outer, norm**2, spectrum
+    reflecting = forward_operator(spec, boundary="reflect", representation="fast")
+    return inner, outer, norm**2, build_spectrum(reflecting, 0)
 
 
 def extend_readings(
@@ -133,15 +131,10 @@ def extend_readings(
         load = load.reshape(shape)
         return (inner.adjoint(inner.apply(load)) + penalty * load).ravel()
 
-    preconditioner = None
-    if spectrum is not None:  # the reflecting model's inverse, exact but near the edges
-        inverse = 1.0 / (spectrum + penalty)
+    def reflecting(residual: np.ndarray) -> np.ndarray:  # exact but near the edges
+        return spectrum.shifted_solve(residual.reshape(shape), 0.0, penalty).ravel()
 
-        def reflecting(residual: np.ndarray) -> np.ndarray:
-            modes = fft.dctn(residual.reshape(shape), norm="ortho", workers=1) * inverse
-            return fft.idctn(modes, norm="ortho", workers=1).ravel()
-
-        preconditioner = linalg.LinearOperator((size, size), matvec=reflecting, dtype=float)
+    preconditioner = linalg.LinearOperator((size, size), matvec=reflecting, dtype=float)
     operator = linalg.LinearOperator((size, size), matvec=normal, dtype=float)
     right = inner.adjoint(readings.astype(float)).ravel()
     load, _ = linalg.cg(operator, right, rtol=tolerance, maxiter=_MAX_ITERATIONS, M=preconditioner)
