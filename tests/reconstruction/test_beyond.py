@@ -26,10 +26,14 @@ def _grown_truth(spec, load: np.ndarray) -> np.ndarray:
     return forward_operator(grown, boundary="zero").apply(padded)
 
 
-def _beyond(grown: np.ndarray) -> np.ndarray:
-    outside = np.ones(grown.shape, bool)
+def _outside() -> np.ndarray:
+    outside = np.ones((48 + 2 * MARGIN,) * 2, bool)
     outside[MARGIN:-MARGIN, MARGIN:-MARGIN] = False
-    return grown[outside]
+    return outside
+
+
+def _beyond(grown: np.ndarray) -> np.ndarray:
+    return grown[_outside()]
 
 
 @pytest.mark.parametrize("oversampling", [1, 2])
@@ -67,6 +71,21 @@ def test_the_noise_beyond_is_smoothed():
     grown = extend_readings(SPEC, noise, MARGIN)
     assert _beyond(grown).std() < 0.25
     assert grown[MARGIN - 1, MARGIN:-MARGIN].std() < 0.6
+
+
+def test_a_dead_taxel_is_left_out_of_the_fit():
+    load = _loads()
+    readings = forward_operator(SPEC, boundary="zero").apply(load)
+    truth = _grown_truth(SPEC, load)
+    broken = readings.copy()
+    broken[20, 0] = 10 * broken.max()  # on the edge, under the disc
+    dead = SPEC.with_changes(dead_taxels=[(20, 0)])
+    grown = extend_readings(dead, broken, MARGIN)
+    assert grown[MARGIN + 20, MARGIN] == broken[20, 0]  # kept inside as given
+    # beyond the edge within 0.9 % of the disc's pressure; fitted, the broken reading is
+    # carried beyond the edge 2.3 times the disc's pressure off
+    assert np.abs(grown - truth)[_outside()].max() < 0.02 * 50e3
+    assert np.abs(extend_readings(SPEC, broken, MARGIN) - truth)[_outside()].max() > 0.2 * 50e3
 
 
 def test_bad_input_is_refused_by_name():

@@ -75,7 +75,8 @@ def extend_readings(
 
     Inside, the array's own readings; outside, those of the load on the array that
     explains them (the zero-boundary Tikhonov solution, see the module notes): what taxels
-    there would read, were there no load beyond the array.
+    there would read, were there no load beyond the array. The sensor's dead taxels are
+    left out of the fit (their readings are kept inside as given).
 
     Parameters
     ----------
@@ -127,16 +128,18 @@ def extend_readings(
     penalty = lam**2 * norm2
     size = shape[0] * shape[1]
 
+    live = spec.live_taxels  # a dead taxel's reading is left out of the fit
+
     def normal(load: np.ndarray) -> np.ndarray:
         load = load.reshape(shape)
-        return (inner.adjoint(inner.apply(load)) + penalty * load).ravel()
+        return (inner.adjoint(live * inner.apply(load)) + penalty * load).ravel()
 
     def reflecting(residual: np.ndarray) -> np.ndarray:  # exact but near the edges
         return spectrum.shifted_solve(residual.reshape(shape), 0.0, penalty).ravel()
 
     preconditioner = linalg.LinearOperator((size, size), matvec=reflecting, dtype=float)
     operator = linalg.LinearOperator((size, size), matvec=normal, dtype=float)
-    right = inner.adjoint(readings.astype(float)).ravel()
+    right = inner.adjoint(live * readings.astype(float)).ravel()
     load, _ = linalg.cg(operator, right, rtol=tolerance, maxiter=_MAX_ITERATIONS, M=preconditioner)
     cells = margin * spec.oversampling
     padded = np.pad(load.reshape(shape), cells)
