@@ -17,8 +17,8 @@ pressure at the glass lies beyond it, felt by no taxel: the array is grown by th
 with what the load on the array that explains the frame presses there
 (`taxel.reconstruction.extend_readings`; no load beyond the array), and the windows run
 into it. On the features benchmark's 1008 vhdta128 frames that takes the centroid's p95
-from 0.56 to 0.43 taxel (0.38 with `_AGREE` chosen anew and defects taken out), below the
-0.59 of weighing the exact felt pressure over the whole array.
+from 0.56 to 0.43 taxel (0.39 with `_AGREE` chosen anew), below the 0.59 of weighing the
+exact felt pressure over the whole array.
 """
 
 from __future__ import annotations
@@ -31,11 +31,14 @@ import numpy as np
 from taxel.features._image import Prepared
 from taxel.features._moments import binary_moments
 from taxel.features._response import (
+    ROUNDING,
     ReadBack,
     forward_model,
     grey_level_pressure,
     grey_noise,
     light_above_unloaded,
+    light_image,
+    light_pressure,
     signed_pressure,
 )
 from taxel.features._window import catchment_reach, contact_box, contact_window
@@ -56,9 +59,7 @@ _RADII = (0, 2, 4, 8, 16, 32)
 # window, which pulls each towards its middle: a background flat within `_FLAT` sigmas
 # (noise alone spreads by 0.9 sigma on vhdta128, a texture's light contact by 2.3-2.6)
 # and over `_OFFSET` grey levels is such an offset, taken out of every window when the
-# background is half the array or more (`pressure_centre`). Less background than that, lit
-# above the unloaded level by `_LIT` sigmas of its mean, is a texture's light contact,
-# which reaches farther than its mask's reach: the whole array is one window more
+# background is half the array or more (`pressure_centre`)
 _FAR_TAXELS = 256
 _SAMPLE = 3
 _DARK = 0.5
@@ -66,11 +67,8 @@ _CLIP = 5.0
 _STRAY = 0.005
 _FLAT = 1.5
 _OFFSET = 1.0
-_LIT = 4.0
-# A taxel over this many noise sigmas (at the unloaded level's slope) from its 3 x 3 median
-# is a defect (`_despiked`): a hot pixel among an edge's windows put it 0.22 taxel off
-# (0.03 without). On the features benchmark 12 against 8: centroid p95 0.380 against 0.391
-# taxel (none: 0.389), second draw 0.334 both (none: 0.343)
+# A taxel whose light is over this many noise sigmas from its 3 x 3 median is a defect
+# (`_despiked`): a hot pixel among an edge's windows put it 0.22 taxel off (0.03 without)
 _SPIKE = 12.0
 # Two centres agree when they lie within this many noise sigmas of their difference (each
 # centre's noise over both axes together, added in quadrature). Chosen on the features
@@ -117,22 +115,21 @@ def _beyond_reach(prepared: Prepared, reach: int) -> np.ndarray:
     return np.flatnonzero(near.ravel() == 0)
 
 
-def _background(read: ReadBack, far: np.ndarray, grey_noise: float) -> tuple[float, bool] | None:
-    """The background's offset [grey levels] and whether it is lit; None if not the model's.
+def _background(read: ReadBack, far: np.ndarray, grey_noise: float) -> float | None:
+    """The background's offset above the unloaded level [grey levels]; None if not the model's.
 
-    Over every `_SAMPLE`-th taxel of `far`, when there are at least `_FAR_TAXELS` (else
-    (0, False)): the mean of those within `_CLIP` noise sigmas of their median. Light
-    contact only brightens a taxel: a background darker than the unloaded level by more
-    than `_DARK`, or with more than `_STRAY` of its taxels `_CLIP` sigmas below it (or below
-    their median, when that is darker; another glass, whose scratches the model's pattern
-    does not match), is not the model's (None): a texture's light contact beyond the reach
+    Over every `_SAMPLE`-th taxel of `far`, when there are at least `_FAR_TAXELS` (else 0):
+    the mean of those within `_CLIP` noise sigmas of their median. Light contact only
+    brightens a taxel: a background darker than the unloaded level by more than `_DARK`,
+    or with more than `_STRAY` of its taxels `_CLIP` sigmas below it (or below their
+    median, when that is darker; another glass, whose scratches the model's pattern does
+    not match), is not the model's (None): a texture's light contact beyond the reach
     lifts the median, not the unloaded level. The offset is that mean when the background
     is flat (spread within `_FLAT` sigmas, as noise alone is: a camera's offset, not a
-    texture's light contact) and over `_OFFSET`, else 0. Lit: the mean is over `_LIT`
-    times its own noise.
+    texture's light contact) and over `_OFFSET`, else 0. `grey_noise` must be positive.
     """
     if far.size < _FAR_TAXELS:
-        return 0.0, False
+        return 0.0
     light = light_above_unloaded(read, far[::_SAMPLE])
     centre = float(np.median(light))
     clip = _CLIP * grey_noise
@@ -141,19 +138,25 @@ def _background(read: ReadBack, far: np.ndarray, grey_noise: float) -> tuple[flo
     level, spread = float(inside.mean()), float(inside.std())
     if level < -_DARK or dark > _STRAY:
         return None
-    offset = level if level > _OFFSET and spread <= _FLAT * grey_noise else 0.0
-    return offset, level > _LIT * grey_noise / math.sqrt(inside.size)
+    return level if level > _OFFSET and spread <= _FLAT * grey_noise else 0.0
 
 
-def _despiked(pressure: np.ndarray, limit: float) -> np.ndarray:
-    """`pressure` with each taxel over `limit` from its 3 x 3 median replaced by that median.
+def _despiked(read: ReadBack, pressure: np.ndarray, limit: float) -> np.ndarray:
+    """`pressure`, each taxel whose light is `limit` [DN] off its 3 x 3 median's the median's.
 
-    The cover smooths the pressure at the glass over a cover depth: a taxel standing out
-    alone is a defect (a hot pixel), not load.
+    The light is `light_image`'s, its pressure `light_pressure`'s. A taxel standing out
+    alone is a defect (a hot pixel), not load, where the cover smooths the pressure at the
+    glass. Compared in grey levels, where the camera's noise is the same at every level
+    (the read-back's slope grows 27-fold by 99 % light).
     """
-    median = cv2.medianBlur(pressure.astype(np.float32, copy=False), 3)
-    spikes = np.abs(pressure - median) > limit
-    return np.where(spikes, median, pressure) if spikes.any() else pressure
+    light = light_image(read)
+    median = cv2.medianBlur(light, 3)
+    spikes = np.abs(light - median) > limit
+    if not spikes.any():
+        return pressure
+    pressure = pressure.copy()
+    pressure[spikes] = light_pressure(read, median[spikes])
+    return pressure
 
 
 def _mask_sums(prepared: Prepared, pressure: np.ndarray) -> tuple[float, ...]:
@@ -206,21 +209,25 @@ def _box_counts(box: Box) -> tuple[int, int, int, int]:
     return n_r * n_c, n_c * s_r, n_r * s_c, n_c * s_rr + n_r * s_cc
 
 
-def _grown(model: ForwardModelSpec, pressure: np.ndarray, reach: int) -> np.ndarray:
+def _grown(
+    model: ForwardModelSpec, pressure: np.ndarray, reach: int, smoothed: bool = True
+) -> np.ndarray:
     """`pressure` on the array grown by `reach` taxels (`extend_readings`).
 
-    What lies beyond the edges is that of the pressure's 3 x 3 median: the cover smooths
-    the pressure at the glass over a cover depth, and a taxel standing out alone is a
-    defect, which the load that explains it would carry far beyond an edge (a hot pixel
-    on the edge row put an edge contact 0.46 taxel off, 0.03 without it). Solved on 2 x 2
-    blocks of taxels when the cover spreads a load over 3 pitches or more (vhdta128: 3.9),
-    5 times faster and as good for the centre (centroid p95 0.393 against 0.394 taxel on
-    the features benchmark), what lies beyond the edges spread evenly over each block's
-    taxels, which keeps its centre; odd-sized arrays and thinner covers are solved on
-    every taxel, about 4 times slower.
+    What lies beyond the edges is that of the pressure's 3 x 3 median when the cover
+    smooths the pressure at the glass over a taxel or more (`smoothed`): a taxel standing
+    out alone is then a defect, which the load that explains it would carry far beyond an
+    edge (a hot pixel on the edge row put an edge contact 0.46 taxel off, 0.03 without
+    it). Solved on 2 x 2 blocks of taxels when the cover spreads a load over 3 pitches or
+    more (vhdta128: 3.9), 5 times faster and as good for the centre (centroid p95 0.393
+    against 0.394 taxel on the features benchmark), what lies beyond the edges spread
+    evenly over each block's taxels, which keeps its centre; odd-sized arrays and thinner
+    covers are solved on every taxel, about 4 times slower.
     """
     rows, cols = pressure.shape
-    smooth = cv2.medianBlur(pressure.astype(np.float32, copy=False), 3)
+    smooth = pressure.astype(np.float32, copy=False)
+    if smoothed:
+        smooth = np.asarray(cv2.medianBlur(smooth, 3), dtype=np.float32)
     if model.oversampling != 1 or rows % 2 or cols % 2 or model.depth < 3 * model.taxel_pitch:
         grown = extend_readings(model, smooth, reach)
     else:
@@ -254,27 +261,30 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     the image is then weighed. A brighter background, flat beyond the reach, is a
     camera's offset from the model, taken out when over a grey level and half the array or
     more lies beyond the reach (less is too little to tell it from a texture's faint light
-    contact, and a lit background then adds the whole array as a window).
+    contact).
     """
     noise_grey = grey_noise(read, prepared.raw_noise)
+    # a camera's grey levels are integers at heart: a noise-free float frame's checks
+    # take their rounding's noise
+    noise_floor = max(noise_grey, ROUNDING)
     reach = catchment_reach(prepared)
     far = _beyond_reach(prepared, reach)
-    background = _background(read, far, noise_grey)
-    if background is None:
+    grey_level = _background(read, far, noise_floor)
+    if grey_level is None:
         return None
-    grey_level, lit = background
-    pressure = _despiked(signed_pressure(read), _SPIKE * noise_grey * grey_level_pressure(read))
+    # the cover smooths the pressure at the glass over a taxel or more: a taxel standing
+    # out alone is a defect; under a thinner cover a pen's tip may light one taxel alone
+    smoothed = prepared.cover_depth >= prepared.mean_pitch
+    pressure = signed_pressure(read)
+    if smoothed:
+        pressure = _despiked(read, pressure, _SPIKE * noise_floor)
     rows, cols = shape = pressure.shape
     boxes = _windows(prepared, reach)
     # a contact whose reach covers half the array or more (a texture) leaves too little
     # background to tell a camera's offset from its own faint light contact (foam at 30 N
-    # lit the other 23 % by 1.2 grey levels: taken out, 3.1 taxels off); lit, it presses
-    # beyond the reach, and the whole array is a window too (a screen 1.63 taxels off
-    # with the reach's windows alone, 0.08 with it; the foam 0.04)
+    # lit the other 23 % by 1.2 grey levels: taken out, 3.1 taxels off)
     if far.size < pressure.size / 2:
         grey_level = 0.0
-        if lit:
-            boxes.append((-reach, -reach, rows + reach, cols + reach))
     on_array = [_clipped(box, shape) for box in boxes]
     if grey_level:
         pressure = pressure - np.float32(grey_level * grey_level_pressure(read))
@@ -284,7 +294,7 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     if model is None:
         weighted = _box_sums(pressure, on_array)
     else:
-        weighted = _box_sums(_grown(model, pressure, reach), boxes, reach)
+        weighted = _box_sums(_grown(model, pressure, reach, smoothed), boxes, reach)
     # a window's centre moves with the noise of its taxels on the array; beyond its edges
     # the pressure carries that of the taxels near them, smoothed (white noise: std 0.15
     # of theirs, 0.42 next to the edge, `extend_readings`' tests), which is left out

@@ -25,17 +25,20 @@ from taxel.sensor import TactileSensor
 from taxel.transducers import FtirTransducer
 
 __all__ = [
+    "ROUNDING",
     "ReadBack",
     "forward_model",
     "grey_level_pressure",
     "grey_noise",
     "light_above_unloaded",
+    "light_image",
+    "light_pressure",
     "read_back",
     "signed_pressure",
 ]
 
 # The noise of an integer grey level at least: its rounding's [DN]
-_ROUNDING = 1.0 / math.sqrt(12.0)
+ROUNDING = 1.0 / math.sqrt(12.0)
 
 
 @dataclass(frozen=True, eq=False)
@@ -205,6 +208,29 @@ def light_above_unloaded(read: ReadBack, where: np.ndarray) -> np.ndarray:
     return grey
 
 
+def light_image(read: ReadBack) -> np.ndarray:
+    """Grey levels above the unloaded level [DN] of every pixel (float32).
+
+    The unloaded level is the tare's, or the transducer's dark level and its glass's
+    scratches (`light_above_unloaded` for some pixels).
+    """
+    transducer, frame, tare = read.transducer, read.frame, read.tare
+    light = frame.astype(np.float32)
+    if tare is not None:
+        return light - tare.astype(np.float32)
+    light -= np.float32(transducer.dark_level)
+    if transducer.scratch_count:
+        span = transducer.bright_level - transducer.dark_level
+        light -= (span * transducer.scratches(frame.shape)).astype(np.float32)
+    return light
+
+
+def light_pressure(read: ReadBack, light: np.ndarray) -> np.ndarray:
+    """Signed pressure [Pa] of grey levels above the unloaded level [DN] (the law)."""
+    transducer = read.transducer
+    return _law(transducer, light / (transducer.bright_level - transducer.dark_level))
+
+
 def grey_level_pressure(read: ReadBack) -> float:
     """Pressure [Pa] of one grey level at the unloaded level (the law's slope there)."""
     transducer = read.transducer
@@ -216,4 +242,4 @@ def grey_level_pressure(read: ReadBack) -> float:
 
 def grey_noise(read: ReadBack, noise: float) -> float:
     """A frame's noise [DN], an integer frame's taken as its rounding's at least."""
-    return max(noise, _ROUNDING) if read.frame.dtype.kind in "iu" else noise
+    return max(noise, ROUNDING) if read.frame.dtype.kind in "iu" else noise

@@ -9,7 +9,7 @@ load on the array, and that load is the one that explains the array's readings: 
 zero-boundary Tikhonov problem min |A x - b|^2 + lambda^2 |A|^2 |x|^2, solved by
 conjugate gradients on its normal equations (scipy), preconditioned by the same problem
 with the load mirrored about the edges, which the DCT diagonalizes (exact but near the
-edges; `taxel.reconstruction._spectral`, a finer load grid too), then the forward model of
+edges; `taxel.reconstruction._spectral`; not with a finer load grid), then the forward model of
 the array grown by the margin applied to it. Its readings outside the array are smooth
 sums of the load near the edge: the small lambda and the early stop of the iterations
 keep the deconvolution's noise out of them.
@@ -44,11 +44,12 @@ _MAX_ITERATIONS = 200
 @functools.lru_cache(maxsize=8)
 def _operators(
     spec: ForwardModelSpec, margin: int
-) -> tuple[SensorOperator, SensorOperator, float, Spectrum]:
+) -> tuple[SensorOperator, SensorOperator, float, Spectrum | None]:
     """The operators and factors `extend_readings` needs for a sensor (built once).
 
     The array's zero-boundary operator, the grown array's, |A|^2, and the reflecting
-    model's DCT factorization (`build_spectrum`), whose inverse is the preconditioner.
+    model's DCT factorization (`build_spectrum`), whose inverse is the preconditioner (None
+    when the load grid is finer than the taxels).
     """
     # FFT-based: a dense matrix (`forward_operator`'s choice up to 4096 cells) costs more
     # per product from about 32 x 32 cells on
@@ -59,8 +60,13 @@ def _operators(
     # |A| is its largest singular value, a uniform load's reading far from the edges
     # (a stress reading of a uniform pressure is that pressure: 1)
     norm = float(np.abs(outer.apply(np.ones(grown.load_shape))).max())
-    reflecting = forward_operator(spec, boundary="reflect", representation="fast")
-    return inner, outer, norm**2, build_spectrum(reflecting, 0)
+    # with a finer load grid the mirrored problem preconditions worse than none (a review:
+    # at oversampling 2 further from the solution at the same tolerance, and slower)
+    spectrum = None
+    if spec.oversampling == 1:
+        reflecting = forward_operator(spec, boundary="reflect", representation="fast")
+        spectrum = build_spectrum(reflecting, 0)
+    return inner, outer, norm**2, spectrum
 
 
 def extend_readings(
@@ -134,10 +140,14 @@ def extend_readings(
         load = load.reshape(shape)
         return (inner.adjoint(live * inner.apply(load)) + penalty * load).ravel()
 
-    def reflecting(residual: np.ndarray) -> np.ndarray:  # exact but near the edges
-        return spectrum.shifted_solve(residual.reshape(shape), 0.0, penalty).ravel()
+    preconditioner = None
+    if spectrum is not None:
+        mirrored = spectrum
 
-    preconditioner = linalg.LinearOperator((size, size), matvec=reflecting, dtype=float)
+        def reflecting(residual: np.ndarray) -> np.ndarray:  # exact but near the edges
+            return mirrored.shifted_solve(residual.reshape(shape), 0.0, penalty).ravel()
+
+        preconditioner = linalg.LinearOperator((size, size), matvec=reflecting, dtype=float)
     operator = linalg.LinearOperator((size, size), matvec=normal, dtype=float)
     right = inner.adjoint(live * readings.astype(float)).ravel()
     load, _ = linalg.cg(operator, right, rtol=tolerance, maxiter=_MAX_ITERATIONS, M=preconditioner)
