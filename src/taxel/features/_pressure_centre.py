@@ -281,17 +281,17 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     pressure = signed_pressure(read)
     if smoothed:
         pressure = _despiked(read, pressure, _SPIKE * noise_floor)
-    rows, cols = shape = pressure.shape
-    boxes = _windows(prepared, reach)
     # a contact whose reach covers half the array or more (a texture) leaves too little
     # background to tell a camera's offset from its own faint light contact (foam at 30 N
     # lit the other 23 % by 1.2 grey levels: taken out, 3.1 taxels off)
     if far.size < pressure.size / 2:
         grey_level = 0.0
-    on_array = [_clipped(box, shape) for box in boxes]
     if grey_level:
         pressure = pressure - np.float32(grey_level * grey_level_pressure(read))
     noise = noise_grey * grey_level_pressure(read)
+    rows, cols = shape = pressure.shape
+    boxes = _windows(prepared, reach)
+    on_array = [_clipped(box, shape) for box in boxes]
     # the reach crosses an edge: the windows run on into the array grown by it
     model = forward_model(read) if on_array[-1] != boxes[-1] else None
     if model is None:
