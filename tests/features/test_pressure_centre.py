@@ -9,7 +9,13 @@ from scipy import special
 
 from taxel.features import contact_regions, extract, prepare
 from taxel.features._pressure_centre import _background, _box_counts, _box_sums, _grown
-from taxel.features._response import ReadBack, forward_model, read_back, signed_pressure
+from taxel.features._response import (
+    ReadBack,
+    forward_model,
+    light_image,
+    read_back,
+    signed_pressure,
+)
 from taxel.mechanics import make_indenter
 from taxel.reconstruction import extend_readings, spec_from_sensor
 from taxel.sensor import ArrayGeometry, make_sensor
@@ -371,9 +377,9 @@ def test_a_texture_lighting_the_background_is_not_another_glass(vhdta):
     frame = tare + np.uint8(5)
     frame.flat[::50] = 23
     far = np.arange(frame.size)
-    assert _background(ReadBack(vhdta.transducer, frame, tare), far, 1.0) == 5.0
+    assert _background(light_image(ReadBack(vhdta.transducer, frame, tare)), far, 1.0) == 5.0
     frame.flat[::50] = 14
-    assert _background(ReadBack(vhdta.transducer, frame, tare), far, 1.0) is None
+    assert _background(light_image(ReadBack(vhdta.transducer, frame, tare)), far, 1.0) is None
 
 
 def test_a_texture_s_faint_light_beyond_its_reach_is_not_an_offset(vhdta):

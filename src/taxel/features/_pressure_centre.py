@@ -36,7 +36,6 @@ from taxel.features._response import (
     forward_model,
     grey_level_pressure,
     grey_noise,
-    light_above_unloaded,
     light_image,
     light_pressure,
     signed_pressure,
@@ -116,10 +115,12 @@ def _beyond_reach(prepared: Prepared, reach: int) -> np.ndarray:
     return np.flatnonzero(near.ravel() == 0)
 
 
-def _background(read: ReadBack, far: np.ndarray, grey_noise: float) -> float | None:
+def _background(light: np.ndarray, far: np.ndarray, grey_noise: float) -> float | None:
     """The background's offset above the unloaded level [grey levels]; None if not the model's.
 
-    Over every `_SAMPLE`-th taxel of `far`, when there are at least `_FAR_TAXELS` (else 0):
+    Over every `_SAMPLE`-th taxel of `far` (flat indices into `light`, the frame's grey
+    levels above the unloaded level, `light_image`), when there are at least `_FAR_TAXELS`
+    (else 0):
     the mean of those within `_CLIP` noise sigmas of their median. Light contact only
     brightens a taxel: a background darker than the unloaded level by more than `_DARK`,
     or with more than `_STRAY` of its taxels `_CLIP` sigmas below it (or below their
@@ -131,7 +132,7 @@ def _background(read: ReadBack, far: np.ndarray, grey_noise: float) -> float | N
     """
     if far.size < _FAR_TAXELS:
         return 0.0
-    light = light_above_unloaded(read, far[::_SAMPLE])
+    light = light.ravel()[far[::_SAMPLE]].astype(np.float64)
     centre = float(np.median(light))
     clip = _CLIP * grey_noise
     inside = light[np.abs(light - centre) <= clip]
@@ -142,17 +143,16 @@ def _background(read: ReadBack, far: np.ndarray, grey_noise: float) -> float | N
     return level if level > _OFFSET and spread <= _FLAT * grey_noise else 0.0
 
 
-def _despiked(read: ReadBack, pressure: np.ndarray, limit: float) -> np.ndarray:
+def _despiked(read: ReadBack, light: np.ndarray, pressure: np.ndarray, limit: float) -> np.ndarray:
     """`pressure`, each taxel whose light is `limit` [DN] off its 3 x 3 median's the median's.
 
-    The light is `light_image`'s, its pressure `light_pressure`'s. A taxel standing out
+    `light` is the frame's `light_image`, its pressure `light_pressure`'s. A taxel standing out
     alone is a defect (a hot pixel), not load, where the cover smooths the pressure at the
     glass. Compared in grey levels, where the camera's noise grows only about 2-fold by
     full light (shot noise), while the read-back's slope grows 27-fold by 99 % light. A
     3 x 3 median also cuts a ridge's crest: on a noise-free frame (limit 3.5 grey levels)
     a sharp edge's crest loses 2 % of its load (its centre under 0.04 taxel).
     """
-    light = light_image(read)
     median = cv2.medianBlur(light, 3)
     spikes = np.abs(light - median) > limit
     if not spikes.any():
@@ -272,7 +272,8 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     noise_floor = max(noise_grey, ROUNDING)
     reach = catchment_reach(prepared)
     far = _beyond_reach(prepared, reach)
-    grey_level = _background(read, far, noise_floor)
+    light = light_image(read)
+    grey_level = _background(light, far, noise_floor)
     if grey_level is None:
         return None
     # the cover smooths the pressure at the glass over a taxel or more: a taxel standing
@@ -280,7 +281,7 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     smoothed = prepared.cover_depth >= prepared.mean_pitch
     pressure = signed_pressure(read)
     if smoothed:
-        pressure = _despiked(read, pressure, _SPIKE * noise_floor)
+        pressure = _despiked(read, light, pressure, _SPIKE * noise_floor)
     # a contact whose reach covers half the array or more (a texture) leaves too little
     # background to tell a camera's offset from its own faint light contact (foam at 30 N
     # lit the other 23 % by 1.2 grey levels: taken out, 3.1 taxels off)

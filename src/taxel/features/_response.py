@@ -30,7 +30,6 @@ __all__ = [
     "forward_model",
     "grey_level_pressure",
     "grey_noise",
-    "light_above_unloaded",
     "light_image",
     "light_pressure",
     "read_back",
@@ -191,28 +190,11 @@ def signed_pressure(read: ReadBack) -> np.ndarray:
     return pressure
 
 
-def light_above_unloaded(read: ReadBack, where: np.ndarray) -> np.ndarray:
-    """Grey levels above the unloaded level [DN] of the pixels at flat indices `where`.
-
-    The unloaded level is the tare's, or the transducer's dark level and its glass's
-    scratches (float64).
-    """
-    transducer, frame, tare = read.transducer, read.frame, read.tare
-    grey = frame.ravel()[where].astype(np.float64)
-    if tare is not None:
-        return grey - tare.ravel()[where]
-    grey -= transducer.dark_level
-    if transducer.scratch_count:
-        span = transducer.bright_level - transducer.dark_level
-        grey -= span * transducer.scratches(frame.shape).ravel()[where]
-    return grey
-
-
 def light_image(read: ReadBack) -> np.ndarray:
     """Grey levels above the unloaded level [DN] of every pixel (float32).
 
     The unloaded level is the tare's, or the transducer's dark level and its glass's
-    scratches (`light_above_unloaded` for some pixels).
+    scratches.
     """
     transducer, frame, tare = read.transducer, read.frame, read.tare
     light = frame.astype(np.float32)
