@@ -35,6 +35,7 @@ import numpy as np
 from taxel._validation import check_finite, check_flag, check_range
 from taxel.features._blur import gaussian_blur
 from taxel.features._input import LARGEST_VALUE, as_image
+from taxel.features._lighting import background_tilt
 from taxel.features._noise import (
     RESIDUAL_QUANTUM,
     laplacian_residual,
@@ -43,6 +44,8 @@ from taxel.features._noise import (
 )
 from taxel.features._response import ReadBack, read_back
 from taxel.features._sensor import (
+    HALO_TAXELS,
+    TAIL_DEPTHS,
     check_image_shape,
     cover_blur,
     cover_depth,
@@ -72,6 +75,9 @@ F_LOW = 0.12
 F_HIGH = 0.35
 # A contrast below this fraction of the image's magnitude is rounding, not contact.
 _RELATIVE_FLOOR = 1e-6
+# Take a raw frame's uneven lighting out when its array is at least this many taxels a side
+# (`background_tilt`; a smaller one has too little background around a contact to fit)
+_TILT_SIDE = 32
 # Remove defects when the sensing plane lies at least this many taxels under the surface.
 _DEFECT_DEPTH = 3.0
 _DEFECT_KERNEL = np.ones((3, 3), np.uint8)
@@ -102,7 +108,7 @@ class Prepared:
     Attributes
     ----------
     image : numpy.ndarray (float32)
-        The input values [image units].
+        The input values [image units], less `tilt`.
     smooth : numpy.ndarray (float32)
         Gaussian-smoothed image.
     pitch : tuple of float
@@ -156,6 +162,8 @@ class Prepared:
         The raw frame and the transducer that reads it back to pressure, when the sensor
         given has one (see `taxel.features._response`): the contact's centre of pressure
         is then read through it.
+    tilt : numpy.ndarray (float32) or None
+        A raw frame's uneven lighting, taken out of `image` (`background_tilt`).
     """
 
     image: np.ndarray
@@ -184,6 +192,7 @@ class Prepared:
     hexagonal: bool = False
     force_level: float = 0.0
     read_back: ReadBack | None = None
+    tilt: np.ndarray | None = None
 
     @property
     def present(self) -> bool:
@@ -283,6 +292,14 @@ def removes_defects(
     return depth >= _DEFECT_DEPTH * max(pitch_pair(sensor_or_pitch))
 
 
+def _cuts(level: float, peak: float, noise: float) -> tuple[float, float]:
+    """The levels at which the contact is cut and its seeds are taken (`low`, `high`)."""
+    contrast = peak - level
+    return level + max(K_LOW * noise, F_LOW * contrast), level + max(
+        K_HIGH * noise, F_HIGH * contrast
+    )
+
+
 def prepare(
     image: Any,
     sensor_or_pitch: Any,
@@ -315,7 +332,9 @@ def prepare(
         Sigma of the Gaussian smoothing [taxels], 0 to disable.
     baseline : float, optional
         The no-contact level [image units]; by default the minimum of the smoothed image,
-        which fails when the whole sensor is in contact. A calibrated or tared
+        which fails when the whole sensor is in contact. Without it, a raw frame of 32 x 32
+        taxels or more has its lighting's tilt taken out first when the tilt would move the
+        contact's cut (`tilt`, see `taxel.features._lighting`). A calibrated or tared
         (`reference`) image has a known no-load level, 0: when its smoothed minimum stands
         clearly above it (11 noise sigmas: no taxel at rest), the baseline is 3.5 sigmas
         below 0, where a background's minimum usually lies. A raw frame cannot tell: give
@@ -399,10 +418,20 @@ def prepare(
         level = -level
     if abs(level) > LARGEST_VALUE:
         raise ValueError(f"`baseline` must lie within +-{LARGEST_VALUE:.0e}, got {level:.3g}")
+    low, high = _cuts(level, peak, noise)
+    # uneven lighting: a raw frame's background tilt is taken out before the contact is cut
+    lit = not calibrated and reference is None and baseline is None and not resampled
+    tilt = None
+    if lit and min(values.shape) >= _TILT_SIDE:
+        depths = (cover_depth(sensor_or_pitch) or 0.0) / (0.5 * (pitch[0] + pitch[1]))
+        reach = max(HALO_TAXELS, TAIL_DEPTHS * depths)
+        tilt = background_tilt(smooth, low, high, level, noise, reach)
+        if tilt is not None:
+            values, smooth = values - tilt, smooth - tilt
+            level, peak, _, peak_at = cv2.minMaxLoc(smooth)
+            low, high = _cuts(level, peak, noise)
     contrast = peak - level
     floor = max(_RELATIVE_FLOOR * max(abs(peak), abs(level)), 1e-30)
-    low = level + max(K_LOW * noise, F_LOW * contrast)
-    high = level + max(K_HIGH * noise, F_HIGH * contrast)
     common: dict[str, Any] = {
         "image": values, "smooth": smooth, "pitch": pitch, "baseline": level, "noise": noise,
         "contrast": contrast, "raw_noise": raw_noise, "low": low, "high": high,
@@ -411,6 +440,7 @@ def prepare(
         "residual": residual, "residual_step": step, "residual_quantum": quantum,
         "blur": cover_blur(sensor_or_pitch),
         "cover_depth": cover_depth(sensor_or_pitch) or 0.0, "hexagonal": resampled,
+        "tilt": tilt,
         "read_back": None if resampled else read_back(
             sensor_or_pitch, np.asarray(image), calibrated=calibrated,
             tare=None if reference is None else np.asarray(reference),

@@ -54,18 +54,20 @@ _RADII = (0, 2, 4, 8, 16, 32)
 # contact only brightens a taxel: a background darker than the unloaded level by over
 # `_DARK` grey levels, or with over `_STRAY` of its taxels `_CLIP` noise sigmas below it
 # (another glass's scratches: about 4 %), is not the model's, and the image is weighed.
-# A brighter camera (another dark level, a drift of the lighting) adds a level to every
-# window, which pulls each towards its middle: a background flat within `_FLAT` sigmas
-# (noise alone spreads by 0.9 sigma on vhdta128, a texture's light contact by 2.3-2.6)
-# and over `_OFFSET` grey levels is such an offset, taken out of every window when the
-# background is half the array or more (`pressure_centre`)
+# A brighter camera (another dark level, a drift of the lighting, uneven lighting) adds a
+# level to every window, which pulls each towards its brighter side: a background lying
+# within `_FLAT` sigmas of a plane (noise alone spreads by 0.9 sigma on vhdta128, a
+# texture's light contact by 2.3-2.6) and over `_OFFSET` grey levels somewhere on the
+# array is such a level, taken out of the light when the background is half the array
+# or more (`pressure_centre`); its tilts only where over `_TILT` standard errors
 _FAR_TAXELS = 256
 _SAMPLE = 3
 _DARK = 0.5
 _CLIP = 5.0
 _STRAY = 0.005
 _FLAT = 1.5
-_OFFSET = 1.0
+_OFFSET = 0.5
+_TILT = 3.0
 # A taxel whose light is over this many noise sigmas from its 3 x 3 median is a defect
 # (`_despiked`): a hot pixel among an edge's windows put it 0.22 taxel off (0.03 without)
 _SPIKE = 12.0
@@ -115,32 +117,67 @@ def _beyond_reach(prepared: Prepared, reach: int) -> np.ndarray:
     return np.flatnonzero(near.ravel() == 0)
 
 
-def _background(light: np.ndarray, far: np.ndarray, grey_noise: float) -> float | None:
-    """The background's offset above the unloaded level [grey levels]; None if not the model's.
+def _background(
+    light: np.ndarray, far: np.ndarray, grey_noise: float
+) -> tuple[float, float, float] | None:
+    """The background's level above the unloaded level [grey levels]: a plane, or None.
 
     Over every `_SAMPLE`-th taxel of `far` (flat indices into `light`, the frame's grey
     levels above the unloaded level, `light_image`), when there are at least `_FAR_TAXELS`
-    (else 0):
-    the mean of those within `_CLIP` noise sigmas of their median. Light contact only
-    brightens a taxel: a background darker than the unloaded level by more than `_DARK`,
-    or with more than `_STRAY` of its taxels `_CLIP` sigmas below it (or below their
-    median, when that is darker; another glass, whose scratches the model's pattern does
-    not match), is not the model's (None): a texture's light contact beyond the reach
-    lifts the median, not the unloaded level. The offset is that mean when the background
-    is flat (spread within `_FLAT` sigmas, as noise alone is: a camera's offset, not a
-    texture's light contact) and over `_OFFSET`, else 0. `grey_noise` must be positive.
+    (else no level): a plane fitted by least squares to those within `_CLIP` noise sigmas
+    of their median, then to those within `_CLIP` sigmas of that plane (uneven lighting, a
+    ramp, is a plane's tilt). Light contact only brightens a taxel: a background darker
+    than the unloaded level by more than `_DARK` on average, or with more than `_STRAY` of
+    its taxels `_CLIP` sigmas below the plane (or below the unloaded level, where the plane
+    is darker; another glass, whose scratches the model's pattern does not match), is not
+    the model's (None): a texture's light contact beyond the reach lifts the median, not
+    the unloaded level. The level is that plane when the background lies on it (spread
+    within `_FLAT` sigmas, as noise alone is: a camera's offset or uneven lighting, not a
+    texture's light contact) and it stands over `_OFFSET` somewhere on the array, else 0.
+    Returned as (level at the first taxel, change per row, change per column);
+    `grey_noise` must be positive.
     """
     if far.size < _FAR_TAXELS:
-        return 0.0
-    light = light.ravel()[far[::_SAMPLE]].astype(np.float64)
-    centre = float(np.median(light))
+        return (0.0, 0.0, 0.0)
+    sampled = far[::_SAMPLE]
+    values = light.ravel()[sampled].astype(np.float64)
+    rows, cols = np.divmod(sampled, light.shape[1])
     clip = _CLIP * grey_noise
-    inside = light[np.abs(light - centre) <= clip]
-    dark = np.count_nonzero(light < min(centre, 0.0) - clip) / light.size
-    level, spread = float(inside.mean()), float(inside.std())
+    inside = np.abs(values - np.median(values)) <= clip
+    design = np.column_stack((np.ones(values.size), rows, cols)).astype(np.float64)
+    for _ in range(2):
+        # centred, for a well-conditioned fit (the samples may be a narrow band)
+        middle = design[inside].mean(axis=0)
+        middle[0] = 0.0
+        centred = design[inside] - middle
+        coefficients, residuals = np.linalg.lstsq(centred, values[inside], rcond=None)[:2]
+        # a tilt within `_TILT` of its standard errors is noise, which the law would
+        # magnify in a bright contact (a can's rim: 0.38 grey levels of tilt across the
+        # array at 2 errors put its centre 2.7 taxels off)
+        variance = float(residuals[0]) / max(centred.shape[0] - 3, 1) if residuals.size else 0.0
+        errors = np.sqrt(variance * np.diag(np.linalg.pinv(centred.T @ centred)))
+        coefficients[1:][np.abs(coefficients[1:]) <= _TILT * errors[1:]] = 0.0
+        coefficients[0] = values[inside].mean() - coefficients[1:] @ middle[1:]
+        plane = design @ coefficients
+        inside = np.abs(values - plane) <= clip
+    dark = np.count_nonzero(values < np.minimum(plane, 0.0) - clip) / values.size
+    level = float(plane[inside].mean())
+    spread = float((values - plane)[inside].std())
     if level < -_DARK or dark > _STRAY:
         return None
-    return level if level > _OFFSET and spread <= _FLAT * grey_noise else 0.0
+    last_row, last_col = light.shape[0] - 1, light.shape[1] - 1
+    corners = [coefficients @ (1.0, r, c) for r in (0, last_row) for c in (0, last_col)]
+    if max(map(abs, corners)) > _OFFSET and spread <= _FLAT * grey_noise:
+        return (float(coefficients[0]), float(coefficients[1]), float(coefficients[2]))
+    return (0.0, 0.0, 0.0)
+
+
+def _plane(level: tuple[float, float, float], shape: tuple[int, ...]) -> np.ndarray:
+    """The image (float32) of `shape` of a plane (at the first taxel, per row, per column)."""
+    start, per_row, per_col = (np.float32(v) for v in level)
+    rows = np.arange(shape[0], dtype=np.float32)[:, None]
+    cols = np.arange(shape[1], dtype=np.float32)[None, :]
+    return start + per_row * rows + per_col * cols
 
 
 def _despiked(read: ReadBack, light: np.ndarray, pressure: np.ndarray, limit: float) -> np.ndarray:
@@ -261,10 +298,11 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     Windows whose pressure sums to nothing, or whose centre falls off the array, are
     passed over; None when every window is, or when the background beyond the reach is
     not the model's (`_background`: darker than its unloaded level, or another glass's):
-    the image is then weighed. A brighter background, flat beyond the reach, is a
-    camera's offset from the model, taken out when over a grey level and half the array or
-    more lies beyond the reach (less is too little to tell it from a texture's faint light
-    contact).
+    the image is then weighed. A brighter background lying on a plane beyond the reach is
+    a camera's offset from the model or its uneven lighting, taken out of the light when
+    over half a grey level somewhere and half the array or more lies beyond the reach
+    (less is too little to tell it from a texture's faint light contact). A raw frame's
+    tilt taken out before segmentation (`Prepared.tilt`) is taken out first.
     """
     noise_grey = grey_noise(read, prepared.raw_noise)
     # a camera's grey levels are integers at heart: a noise-free float frame's checks
@@ -272,23 +310,29 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     noise_floor = max(noise_grey, ROUNDING)
     reach = catchment_reach(prepared)
     far = _beyond_reach(prepared, reach)
+    # the frame's uneven lighting, as segmentation measured it, is no light contact
     light = light_image(read)
-    grey_level = _background(light, far, noise_floor)
-    if grey_level is None:
+    if prepared.tilt is not None:
+        light -= prepared.tilt
+    level = _background(light, far, noise_floor)
+    if level is None:
         return None
+    # a contact whose reach covers half the array or more (a texture) leaves too little
+    # background to tell a camera's level from its own faint light contact (foam at 30 N
+    # lit the other 23 % by 1.2 grey levels: taken out, 3.1 taxels off). The level is
+    # taken out of the light, not of the pressure: the law's slope grows with the light
+    levelled = far.size >= light.size / 2 and any(level)
+    if levelled:
+        light -= _plane(level, light.shape)
+    if levelled or prepared.tilt is not None:
+        pressure = light_pressure(read, light)
+    else:
+        pressure = signed_pressure(read)
     # the cover smooths the pressure at the glass over a taxel or more: a taxel standing
     # out alone is a defect; under a thinner cover a pen's tip may light one taxel alone
     smoothed = prepared.cover_depth >= prepared.mean_pitch
-    pressure = signed_pressure(read)
     if smoothed:
         pressure = _despiked(read, light, pressure, _SPIKE * noise_floor)
-    # a contact whose reach covers half the array or more (a texture) leaves too little
-    # background to tell a camera's offset from its own faint light contact (foam at 30 N
-    # lit the other 23 % by 1.2 grey levels: taken out, 3.1 taxels off)
-    if far.size < pressure.size / 2:
-        grey_level = 0.0
-    if grey_level:
-        pressure = pressure - np.float32(grey_level * grey_level_pressure(read))
     noise = noise_grey * grey_level_pressure(read)
     rows, cols = shape = pressure.shape
     boxes = _windows(prepared, reach)

@@ -23,6 +23,8 @@ from taxel._validation import (
 )
 
 __all__ = [
+    "HALO_TAXELS",
+    "TAIL_DEPTHS",
     "check_image_shape",
     "cover_blur",
     "cover_depth",
@@ -33,6 +35,10 @@ __all__ = [
     "sensor_coordinates",
     "sensor_noise",
 ]
+
+# A contact's load is felt this many cover depths around it (2 % of a point load's beyond)
+TAIL_DEPTHS = 3.5
+HALO_TAXELS = 2  # ... and at least this far: the smoothing's reach
 
 _BLUR_CACHE: dict[Any, float] = {}
 _NOISE_CACHE: weakref.WeakKeyDictionary[Any, float] = weakref.WeakKeyDictionary()

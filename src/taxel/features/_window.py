@@ -13,6 +13,7 @@ import cv2
 import numpy as np
 
 from taxel.features._image import Prepared
+from taxel.features._sensor import HALO_TAXELS, TAIL_DEPTHS
 
 __all__ = [
     "WHOLE_IMAGE",
@@ -26,9 +27,6 @@ __all__ = [
 
 # Images of at most this many taxels are read whole (see `contact_window`).
 WHOLE_IMAGE = 32 * 32
-# a contact's load is felt this many cover depths around it (2 % of a point load's beyond)
-_TAIL_DEPTHS = 3.5
-_HALO_TAXELS = 2  # ... and at least this far: the smoothing's reach
 
 
 def catchment_reach(prepared: Prepared) -> int:
@@ -38,12 +36,12 @@ def catchment_reach(prepared: Prepared) -> int:
     beyond a radius R is (1 + R^2 / d^2)^(-3/2): 2 % at R = 3.5 d. Without a cover (a bare
     pitch, a pressure map) the smoothing's reach, 2 taxels.
     """
-    return math.ceil(depths_in_taxels(prepared, _TAIL_DEPTHS) - 1e-9)
+    return math.ceil(depths_in_taxels(prepared, TAIL_DEPTHS) - 1e-9)
 
 
 def depths_in_taxels(prepared: Prepared, depths: float) -> float:
-    """`depths` cover depths in taxels, at least `_HALO_TAXELS` (without a cover, that)."""
-    return max(_HALO_TAXELS, depths * prepared.cover_depth / prepared.mean_pitch)
+    """`depths` cover depths in taxels, at least `HALO_TAXELS` (without a cover, that)."""
+    return max(HALO_TAXELS, depths * prepared.cover_depth / prepared.mean_pitch)
 
 
 def contact_area(prepared: Prepared) -> int:
