@@ -15,7 +15,6 @@ fit, and a tilt hidden under the contact cannot be seen: both are left as they a
 from __future__ import annotations
 
 import math
-from functools import lru_cache
 
 import cv2
 import numpy as np
@@ -51,15 +50,10 @@ _LIFTS_CUT = 1.0
 _FIRST_LOOK = 0.5
 
 
-@lru_cache(maxsize=16)
-def _square(reach: int) -> np.ndarray:
-    """A square structuring element reaching `reach` points each way."""
-    return cv2.getStructuringElement(cv2.MORPH_RECT, (2 * reach + 1,) * 2)
-
-
 def _away(coarse: np.ndarray, cut: float, reach: int) -> np.ndarray:
     """1 (uint8) on the points of `coarse` over `reach` points from any at `cut` or above."""
-    near = cv2.dilate((coarse >= np.float32(cut)).view(np.uint8), _square(reach))
+    square = np.ones((2 * reach + 1, 2 * reach + 1), np.uint8)
+    near = cv2.dilate((coarse >= np.float32(cut)).view(np.uint8), square)
     return 1 - near
 
 
