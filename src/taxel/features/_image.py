@@ -44,11 +44,11 @@ from taxel.features._noise import (
 )
 from taxel.features._response import ReadBack, read_back
 from taxel.features._sensor import (
-    HALO_TAXELS,
     TAIL_DEPTHS,
     check_image_shape,
     cover_blur,
     cover_depth,
+    depths_in_taxels_of,
     hexagonal_resampled,
     pitch_pair,
     raw_falls_with_pressure,
@@ -295,9 +295,8 @@ def removes_defects(
 def _cuts(level: float, peak: float, noise: float) -> tuple[float, float]:
     """The levels at which the contact is cut and its seeds are taken (`low`, `high`)."""
     contrast = peak - level
-    return level + max(K_LOW * noise, F_LOW * contrast), level + max(
-        K_HIGH * noise, F_HIGH * contrast
-    )
+    low = level + max(K_LOW * noise, F_LOW * contrast)
+    return low, level + max(K_HIGH * noise, F_HIGH * contrast)
 
 
 def prepare(
@@ -423,8 +422,8 @@ def prepare(
     lit = not calibrated and reference is None and baseline is None and not resampled
     tilt = None
     if lit and min(values.shape) >= _TILT_SIDE:
-        depths = (cover_depth(sensor_or_pitch) or 0.0) / (0.5 * (pitch[0] + pitch[1]))
-        reach = max(HALO_TAXELS, TAIL_DEPTHS * depths)
+        depth, mean_pitch = cover_depth(sensor_or_pitch) or 0.0, 0.5 * (pitch[0] + pitch[1])
+        reach = depths_in_taxels_of(depth, mean_pitch, TAIL_DEPTHS)  # (`catchment_reach`)
         tilt = background_tilt(smooth, low, high, level, noise, reach)
         if tilt is not None:
             values, smooth = values - tilt, smooth - tilt

@@ -19,7 +19,7 @@ import math
 import cv2
 import numpy as np
 
-__all__ = ["background_tilt"]
+__all__ = ["background_tilt", "fit_plane", "plane_image"]
 
 # Read the smoothed image on a grid of about this many points a side
 _GRID = 32
@@ -76,21 +76,26 @@ def _first_slopes(coarse: np.ndarray, away: np.ndarray) -> tuple[float, float]:
     return (xx * yv - xy * xv) / determinant, (yy * xv - xy * yv) / determinant
 
 
-def _plane(design: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, float, np.ndarray]:
+def fit_plane(design: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, float, np.ndarray]:
     """Least-squares plane through `values`: coefficients, residual variance, standard errors.
 
-    `design` holds the rows 1, row, column of 3 or more points; the errors are inf when
-    the points lie on a line.
+    `design` holds the rows 1, row, column of 3 or more points (better centred: the fit is
+    then well conditioned); a direction the points do not span gets a zero coefficient of
+    zero error (SVD least squares, errors by a pseudo-inverse).
     """
-    gram = design @ design.T
-    try:
-        inverse = np.linalg.inv(gram)
-    except np.linalg.LinAlgError:
-        return np.zeros(3), math.inf, np.full(3, math.inf)
-    coefficients = inverse @ (design @ values)
+    coefficients = np.linalg.lstsq(design.T, values, rcond=None)[0]
+    inverse = np.linalg.pinv(design @ design.T)
     residuals = values - coefficients @ design
     variance = float(residuals @ residuals) / max(values.size - 3, 1)
     return coefficients, variance, np.sqrt(np.maximum(variance * np.diag(inverse), 0.0))
+
+
+def plane_image(level: tuple[float, float, float], shape: tuple[int, ...]) -> np.ndarray:
+    """The image (float32) of `shape` of a plane: at the first taxel, per row, per column."""
+    start, per_row, per_col = (np.float32(v) for v in level)
+    rows = np.arange(shape[0], dtype=np.float32)[:, None]
+    cols = np.arange(shape[1], dtype=np.float32)[None, :]
+    return start + per_row * rows + per_col * cols
 
 
 def _rise(slopes: np.ndarray, rows: int, cols: int) -> float:
@@ -152,19 +157,16 @@ def background_tilt(
     design = np.stack(
         (np.ones(values.size), at_rows * step - middle[0], at_cols * step - middle[1])
     )
-    coefficients, variance, errors = _plane(design, values)
+    coefficients, variance, errors = fit_plane(design, values)
     # again without the points off the plane (a speck, a defect, a contact's faint tail)
     inside = np.abs(values - coefficients @ design) <= _CLIP * max(noise, math.sqrt(variance))
     if np.count_nonzero(inside) < _LEAST_POINTS:
         return None
-    coefficients, variance, errors = _plane(design[:, inside], values[inside])
+    coefficients, variance, errors = fit_plane(design[:, inside], values[inside])
     if not variance <= (_FLAT * noise) ** 2:
         return None
     slopes = np.where(np.abs(coefficients[1:]) > _SIGNIFICANT * errors[1:], coefficients[1:], 0.0)
     if _rise(slopes, rows, cols) <= threshold:
         return None
-    down = (np.arange(rows, dtype=np.float32) - np.float32((rows - 1) / 2)) * np.float32(slopes[0])
-    across = (np.arange(cols, dtype=np.float32) - np.float32((cols - 1) / 2)) * np.float32(
-        slopes[1]
-    )
-    return down[:, None] + across[None, :]
+    start = -(slopes[0] * middle[0] + slopes[1] * middle[1])  # zero at the centre
+    return plane_image((start, slopes[0], slopes[1]), smooth.shape)

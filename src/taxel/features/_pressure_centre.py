@@ -29,6 +29,7 @@ import cv2
 import numpy as np
 
 from taxel.features._image import Prepared
+from taxel.features._lighting import fit_plane, plane_image
 from taxel.features._moments import binary_moments
 from taxel.features._response import (
     ROUNDING,
@@ -144,21 +145,19 @@ def _background(
     rows, cols = np.divmod(sampled, light.shape[1])
     clip = _CLIP * grey_noise
     inside = np.abs(values - np.median(values)) <= clip
-    design = np.column_stack((np.ones(values.size), rows, cols)).astype(np.float64)
+    design = np.stack((np.ones(values.size), rows, cols)).astype(np.float64)
     for _ in range(2):
-        # centred, for a well-conditioned fit (the samples may be a narrow band)
-        middle = design[inside].mean(axis=0)
+        # centred on the points, for a well-conditioned fit (they may be a narrow band)
+        middle = design[:, inside].mean(axis=1)
         middle[0] = 0.0
-        centred = design[inside] - middle
-        coefficients, residuals = np.linalg.lstsq(centred, values[inside], rcond=None)[:2]
+        coefficients, _, errors = fit_plane(design[:, inside] - middle[:, None], values[inside])
         # a tilt within `_TILT` of its standard errors is noise, which the law would
         # magnify in a bright contact (a can's rim: 0.38 grey levels of tilt across the
         # array at 2 errors put its centre 2.7 taxels off)
-        variance = float(residuals[0]) / max(centred.shape[0] - 3, 1) if residuals.size else 0.0
-        errors = np.sqrt(variance * np.diag(np.linalg.pinv(centred.T @ centred)))
         coefficients[1:][np.abs(coefficients[1:]) <= _TILT * errors[1:]] = 0.0
+        # (the points' mean lies on the plane: about the first taxel)
         coefficients[0] = values[inside].mean() - coefficients[1:] @ middle[1:]
-        plane = design @ coefficients
+        plane = coefficients @ design
         inside = np.abs(values - plane) <= clip
     dark = np.count_nonzero(values < np.minimum(plane, 0.0) - clip) / values.size
     level = float(plane[inside].mean())
@@ -170,14 +169,6 @@ def _background(
     if max(map(abs, corners)) > _OFFSET and spread <= _FLAT * grey_noise:
         return (float(coefficients[0]), float(coefficients[1]), float(coefficients[2]))
     return (0.0, 0.0, 0.0)
-
-
-def _plane(level: tuple[float, float, float], shape: tuple[int, ...]) -> np.ndarray:
-    """The image (float32) of `shape` of a plane (at the first taxel, per row, per column)."""
-    start, per_row, per_col = (np.float32(v) for v in level)
-    rows = np.arange(shape[0], dtype=np.float32)[:, None]
-    cols = np.arange(shape[1], dtype=np.float32)[None, :]
-    return start + per_row * rows + per_col * cols
 
 
 def _despiked(read: ReadBack, light: np.ndarray, pressure: np.ndarray, limit: float) -> np.ndarray:
@@ -323,7 +314,7 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     # taken out of the light, not of the pressure: the law's slope grows with the light
     levelled = far.size >= light.size / 2 and any(level)
     if levelled:
-        light -= _plane(level, light.shape)
+        light -= plane_image(level, light.shape)
     if levelled or prepared.tilt is not None:
         pressure = light_pressure(read, light)
     else:

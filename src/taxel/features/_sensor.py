@@ -23,11 +23,11 @@ from taxel._validation import (
 )
 
 __all__ = [
-    "HALO_TAXELS",
     "TAIL_DEPTHS",
     "check_image_shape",
     "cover_blur",
     "cover_depth",
+    "depths_in_taxels_of",
     "hexagonal_resampled",
     "pitch_pair",
     "raw_falls_with_pressure",
@@ -38,7 +38,7 @@ __all__ = [
 
 # A contact's load is felt this many cover depths around it (2 % of a point load's beyond)
 TAIL_DEPTHS = 3.5
-HALO_TAXELS = 2  # ... and at least this far: the smoothing's reach
+_HALO_TAXELS = 2  # ... and at least this far: the smoothing's reach
 
 _BLUR_CACHE: dict[Any, float] = {}
 _NOISE_CACHE: weakref.WeakKeyDictionary[Any, float] = weakref.WeakKeyDictionary()
@@ -49,6 +49,14 @@ _NOISE_FRAMES = 64
 # Row and column pitches this close count as square for the measures taken in taxels
 # (a 1 % stretch turns a 45 deg line by 0.3 deg)
 _SQUARE_WITHIN = 0.01
+
+
+def depths_in_taxels_of(depth: float, mean_pitch: float, depths: float) -> float:
+    """`depths` cover depths of `depth` [m] in taxels of `mean_pitch` [m], at least 2.
+
+    Without a cover (`depth` 0), the smoothing's reach, `_HALO_TAXELS`.
+    """
+    return max(_HALO_TAXELS, depths * depth / mean_pitch)
 
 
 def cover_depth(sensor_or_pitch: Any) -> float | None:

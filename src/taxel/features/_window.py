@@ -13,7 +13,7 @@ import cv2
 import numpy as np
 
 from taxel.features._image import Prepared
-from taxel.features._sensor import HALO_TAXELS, TAIL_DEPTHS
+from taxel.features._sensor import TAIL_DEPTHS, depths_in_taxels_of
 
 __all__ = [
     "WHOLE_IMAGE",
@@ -40,8 +40,8 @@ def catchment_reach(prepared: Prepared) -> int:
 
 
 def depths_in_taxels(prepared: Prepared, depths: float) -> float:
-    """`depths` cover depths in taxels, at least `HALO_TAXELS` (without a cover, that)."""
-    return max(HALO_TAXELS, depths * prepared.cover_depth / prepared.mean_pitch)
+    """`depths` cover depths in taxels, at least 2 (without a cover, that)."""
+    return depths_in_taxels_of(prepared.cover_depth, prepared.mean_pitch, depths)
 
 
 def contact_area(prepared: Prepared) -> int:
