@@ -594,6 +594,8 @@ def run(quick: bool = False, seed: int = SEED, details: bool = False) -> str:
         "gives.\n",
         timings.table(),
         "",
+        timings.one_feature_table(),
+        "",
         profile,
         "",
         budget,

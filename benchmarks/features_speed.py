@@ -1,11 +1,12 @@
-"""Speed of the full feature set (issue 5), timed in rounds spread over the benchmark's run.
+"""Speed of the full feature set (issue 5), and of each one-feature function, timed in rounds.
 
 The machine is shared and its speed drifts by up to 2x from one minute to the next. Each
 synthetic frame is therefore timed once per round, a round after each section of the
 benchmark, so that the rounds sample the machine at different moments. A round's figure is
 the median CPU time of its calls; the verdict takes the round whose median over the
 patterns is least, as `timeit` advises (interference only adds time), and the slowest
-round is given beside it.
+round is given beside it. The one-feature functions (`find_contact`, ...) are timed in the
+same rounds, for a sensor loop that needs less than every feature.
 """
 
 from __future__ import annotations
@@ -22,20 +23,41 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests" / "featu
 import synthetic
 
 from reconstruction_speed import dct_probe
-from taxel.features import extract
+from taxel.features import (
+    classify_contact,
+    contact_plane,
+    detect_holes,
+    detect_slots,
+    extract,
+    find_contact,
+    prepare,
+    texture_measures,
+)
 
 PATTERNS = ["cone", "band", "arc", "washer", "corner", "plate_with_slot", "texture"]
 CLOCK = time.thread_time  # CPU time of this thread: what one core spends, whatever the load
 SIZES = (("128x128 FTIR 8-bit", 3.3e-2 / 128, 1000e-6), ("16x16 pressure", 1.5e-3, 100e-6))
 
 
-def median_time(image: np.ndarray, pitch: float, repeats: int) -> float:
-    """Median CPU time of `extract` on one image [s]."""
-    extract(image, pitch)  # warm caches
+# what a loop that needs less than every feature can call instead (each prepares the image)
+ONE_FEATURE = (
+    ("prepare", prepare, "validation, noise, smoothing, contact mask"),
+    ("find_contact", find_contact, "contact, regions, centroid"),
+    ("classify_contact", classify_contact, "contact type"),
+    ("detect_holes", detect_holes, "holes, both tests"),
+    ("detect_slots", detect_slots, "slots"),
+    ("contact_plane", contact_plane, "planarity"),
+    ("texture_measures", texture_measures, "texture"),
+)
+
+
+def median_time(image: np.ndarray, pitch: float, repeats: int, function=extract) -> float:
+    """Median CPU time of `function` (by default `extract`) on one image [s]."""
+    function(image, pitch)  # warm caches
     times = []
     for _ in range(repeats):
         start = CLOCK()
-        extract(image, pitch)
+        function(image, pitch)
         times.append(CLOCK() - start)
     return statistics.median(times)
 
@@ -50,6 +72,10 @@ class SpeedRounds:
     rounds: list[list[list[float]]] = field(default_factory=lambda: [[] for _ in SIZES])
     # per round: the time of a bare 128 x 128 DCT [s], how fast the machine was then
     probes: list[float] = field(default_factory=list)
+    # per one-feature function, per size: per round, the median over the patterns [s]
+    single: dict[str, list[list[float]]] = field(
+        default_factory=lambda: {name: [[] for _ in SIZES] for name, _, _ in ONE_FEATURE}
+    )
 
     def __post_init__(self) -> None:
         for name in PATTERNS:
@@ -69,6 +95,32 @@ class SpeedRounds:
             self.rounds[index].append(
                 [median_time(self.frames[name][index], pitch, self.repeats) for name in PATTERNS]
             )
+            for name, function, _ in ONE_FEATURE:
+                times = [
+                    median_time(self.frames[pattern][index], pitch, self.repeats // 3, function)
+                    for pattern in PATTERNS
+                ]
+                self.single[name][index].append(statistics.median(times))
+
+    def one_feature_table(self) -> str:
+        """CPU time of each one-feature function (at least one round must have run)."""
+        lines = [
+            "One feature at a time, for a loop that needs less than every feature (each "
+            "call prepares the image itself): median over the seven patterns of the median "
+            f"CPU time of {self.repeats // 3} calls [us], in each round; the least and the "
+            "slowest round, marked where even the least is over the full feature set's "
+            "target.\n",
+            "| function | what | " + " | ".join(label for label, _, _ in SIZES) + " |",
+            "|---|---|" + "---|" * len(SIZES),
+        ]
+        for name, _, what in ONE_FEATURE:
+            cells = []
+            for rounds, (_, _, target) in zip(self.single[name], SIZES, strict=True):
+                best, worst = min(rounds), max(rounds)
+                mark = f" (over {target * 1e6:.0f})" if best > target else ""
+                cells.append(f"{best * 1e6:.0f}{mark} / {worst * 1e6:.0f}")
+            lines.append(f"| `{name}` | {what} | {' | '.join(cells)} |")
+        return "\n".join(lines)
 
     def table(self) -> str:
         """The speed table (at least one round must have run)."""
