@@ -401,20 +401,56 @@ def test_a_texture_s_faint_light_beyond_its_reach_is_not_an_offset(vhdta):
     assert _error(extract(raw, vhdta).contact.centroid_m, truth, vhdta) < 1.5
 
 
-def test_a_read_back_far_from_the_image_centre_is_not_kept(vhdta):
-    # two pens far apart on a camera 0.45 grey levels brighter (too little to be taken
-    # out as an offset): under the union of their windows the offset weighs as much as the
-    # pens; the image's centre lies more than two cover depths away, so the image is kept
-    # (2.65 taxels off). An offset of 0.7 is taken out (2.01, as without one; it was 2.65)
-    x, y = vhdta.load_grid.coordinates()
+def _two_pens(sensor):
+    """The pressure of two pens far apart, its centroid [m], and its frame (float)."""
+    x, y = sensor.load_grid.coordinates()
     pressure = sum(
-        vhdta.press(make_indenter("pen"), normal_force=force, position=at, rng=0).contact.pressure
+        sensor.press(make_indenter("pen"), normal_force=force, position=at, rng=0).contact.pressure
         for force, at in ((1.0, (-13e-3, -13e-3)), (0.5, (13e-3, 13e-3)))
     )
     truth = np.array([(pressure * x).sum(), (pressure * y).sum()]) / pressure.sum()
-    unlit = vhdta.frame_from_pressure(pressure, rng=3).raw
-    frame = unlit + 0.45
-    assert extract(frame, vhdta).contact.centroid_index == _image_weighed(frame, vhdta)
-    assert _error(extract(frame, vhdta).contact.centroid_m, truth, vhdta) < 3.0
-    offset = extract(unlit + 0.7, vhdta).contact.centroid_m
-    assert offset == pytest.approx(extract(unlit, vhdta).contact.centroid_m, abs=1e-6)
+    return truth, sensor.frame_from_pressure(pressure, rng=3).raw.astype(float)
+
+
+def test_a_camera_s_small_offset_under_two_pens_is_taken_out(vhdta):
+    # two pens far apart: under the union of their windows a camera offset weighs as much
+    # as the pens. Levels over 3 standard errors of their mean are taken out: offsets of
+    # -0.2 to 0.45 grey levels put the pair 2.65-8.0 taxels off when only those over 0.5
+    # were (2.01 without an offset)
+    truth, unlit = _two_pens(vhdta)
+    clean = extract(unlit, vhdta).contact.centroid_m
+    assert _error(clean, truth, vhdta) < 2.1
+    for offset in (-0.2, 0.1, 0.2, 0.3, 0.45, 0.7):
+        moved = extract(unlit + offset, vhdta).contact.centroid_m
+        assert moved == pytest.approx(clean, abs=0.01 * vhdta.taxel_pitch[0])
+
+
+def test_a_level_without_a_tilt_is_taken_out_when_significant(vhdta):
+    # 0.2 grey levels on 16384 taxels (every 3rd read) of 1 level of noise: 0.014 of
+    # standard error
+    tare = np.full((128, 128), 24.0)
+    noise = np.random.default_rng(4).normal(0.0, 1.0, tare.shape)
+    far = np.arange(tare.size)
+    lit = light_image(ReadBack(vhdta.transducer, tare + 0.2 + noise, tare))
+    start, per_row, per_col = _background(lit, far, 1.0)
+    assert (per_row, per_col) == (0.0, 0.0)
+    assert start == pytest.approx(0.2, abs=0.03)
+    # a level within 3 standard errors is none: 0.05 on 900 taxels (300 read: 0.058)
+    few = _background(
+        light_image(ReadBack(vhdta.transducer, tare + 0.05 + noise, tare)), far[:900], 1.0
+    )
+    assert few == (0.0, 0.0, 0.0)
+
+
+def test_a_read_back_far_from_the_image_centre_is_not_kept(vhdta, monkeypatch):
+    # the same contact weighed two ways: a read-back more than two cover depths (7.8
+    # taxels) from the image's centre weighs what the frame's model gets wrong, not the
+    # contact: the image's centre is kept; within them, the read-back's
+    import taxel.features._contact as contact_module
+
+    pen, _ = _pressed(vhdta, "pen", 1.0, (2e-3, 1e-3))
+    weighed = _image_weighed(pen, vhdta)
+    for shift, kept in ((9.0, weighed), (6.0, (weighed[0] + 6.0, weighed[1]))):
+        centre = (weighed[0] + shift, weighed[1])
+        monkeypatch.setattr(contact_module, "pressure_centre", lambda *_, c=centre: c)
+        assert extract(pen, vhdta).contact.centroid_index == pytest.approx(kept)

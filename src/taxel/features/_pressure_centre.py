@@ -60,7 +60,14 @@ _RADII = (0, 2, 4, 8, 16, 32)
 # within `_FLAT` sigmas of a plane (noise alone spreads by 0.9 sigma on vhdta128, a
 # texture's light contact by 2.3-2.6) and over `_OFFSET` grey levels somewhere on the
 # array is such a level, taken out of the light when the background is half the array
-# or more (`pressure_centre`); its tilts only where over `_TILT` standard errors
+# or more (`pressure_centre`); its tilts only where over `_SIGNIFICANT` standard errors.
+# Without a tilt, a constant level is taken out from `_SIGNIFICANT` standard errors of
+# its mean (a few hundredths of a grey level): two pens far apart on a camera 0.2-0.45
+# grey levels brighter were 2.7-8.0 taxels off under the union of their windows, where
+# the offset weighs as much as the pens (2.0 without the offset, and now). A tilt below
+# `_OFFSET` is not taken out: a can's rim lit its far background by 0.4 grey levels
+# across, a light contact's faint tail, not the camera's, and taking it out put the rim
+# 2.7 taxels off (0.2 left in)
 _FAR_TAXELS = 256
 _SAMPLE = 3
 _DARK = 0.5
@@ -68,7 +75,7 @@ _CLIP = 5.0
 _STRAY = 0.005
 _FLAT = 1.5
 _OFFSET = 0.5
-_TILT = 3.0
+_SIGNIFICANT = 3.0
 # A taxel whose light is over this many noise sigmas from its 3 x 3 median is a defect
 # (`_despiked`): a hot pixel among an edge's windows put it 0.22 taxel off (0.03 without)
 _SPIKE = 12.0
@@ -134,7 +141,9 @@ def _background(
     the model's (None): a texture's light contact beyond the reach lifts the median, not
     the unloaded level. The level is that plane when the background lies on it (spread
     within `_FLAT` sigmas, as noise alone is: a camera's offset or uneven lighting, not a
-    texture's light contact) and it stands over `_OFFSET` somewhere on the array, else 0.
+    texture's light contact) and it stands over `_OFFSET` somewhere on the array, or it
+    has no tilt and its constant level stands `_SIGNIFICANT` standard errors clear of 0;
+    else 0.
     Returned as (level at the first taxel, change per row, change per column);
     `grey_noise` must be positive.
     """
@@ -151,10 +160,10 @@ def _background(
         middle = design[:, inside].mean(axis=1)
         middle[0] = 0.0
         coefficients, _, errors = fit_plane(design[:, inside] - middle[:, None], values[inside])
-        # a tilt within `_TILT` of its standard errors is noise, which the law would
+        # a tilt within `_SIGNIFICANT` of its standard errors is noise, which the law would
         # magnify in a bright contact (a can's rim: 0.38 grey levels of tilt across the
         # array at 2 errors put its centre 2.7 taxels off)
-        coefficients[1:][np.abs(coefficients[1:]) <= _TILT * errors[1:]] = 0.0
+        coefficients[1:][np.abs(coefficients[1:]) <= _SIGNIFICANT * errors[1:]] = 0.0
         # (the points' mean lies on the plane: about the first taxel)
         coefficients[0] = values[inside].mean() - coefficients[1:] @ middle[1:]
         plane = coefficients @ design
@@ -166,8 +175,12 @@ def _background(
         return None
     last_row, last_col = light.shape[0] - 1, light.shape[1] - 1
     corners = [coefficients @ (1.0, r, c) for r in (0, last_row) for c in (0, last_col)]
-    if max(map(abs, corners)) > _OFFSET and spread <= _FLAT * grey_noise:
-        return (float(coefficients[0]), float(coefficients[1]), float(coefficients[2]))
+    if spread <= _FLAT * grey_noise:
+        if max(map(abs, corners)) > _OFFSET:
+            return (float(coefficients[0]), float(coefficients[1]), float(coefficients[2]))
+        # (without a tilt, the level is the points' mean, and errors[0] its error)
+        if not coefficients[1:].any() and abs(coefficients[0]) > _SIGNIFICANT * errors[0]:
+            return (float(coefficients[0]), 0.0, 0.0)
     return (0.0, 0.0, 0.0)
 
 
@@ -291,8 +304,9 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     not the model's (`_background`: darker than its unloaded level, or another glass's):
     the image is then weighed. A brighter background lying on a plane beyond the reach is
     a camera's offset from the model or its uneven lighting, taken out of the light when
-    over half a grey level somewhere and half the array or more lies beyond the reach
-    (less is too little to tell it from a texture's faint light contact). A raw frame's
+    over half a grey level somewhere (or, level, when 3 standard errors clear of 0) and
+    half the array or more lies beyond the reach (less is too little to tell it from a
+    texture's faint light contact). A raw frame's
     tilt taken out before segmentation (`Prepared.tilt`) is taken out first.
     """
     noise_grey = grey_noise(read, prepared.raw_noise)
