@@ -23,9 +23,6 @@ from taxel.frames import as_pose
 
 __all__ = ["ContactPose", "TactileFeatures", "extract"]
 
-# A region filling >= 90 % of its convex hull (taxels as unit squares) is convex up to the
-# taxel grid, so the seed's diameter test cannot find 4 crossings on it.
-_CONVEX_FILL = 0.9
 # A cover's indentation is millimetres; beyond a metre a depth map is in other units (and
 # its squares overflow in the plane fit).
 _DEEPEST = 1.0  # [m]
@@ -367,13 +364,9 @@ def extract(
         outline_fit=outline_fit,
     )
     plane = plane_core(prepared, depth_map, contours=contours)
-    # a line crosses the outline of one convex region at most twice: no need to walk it
-    convex = len(contours) == 1 and plane.fill >= _CONVEX_FILL
-    test = False
-    if not convex:
-        # the outline's circle, if the type fitted it; else the test fits the circle alone
-        circle = fits[0][1] if fits and fits[0] else None
-        test = diameter_test(prepared, cols, rows, circle, contours=contours)
+    # the outline's circle, if the type fitted it; else the test fits the circle alone
+    circle = fits[0][1] if fits and fits[0] else None
+    test = diameter_test(prepared, cols, rows, circle, contours=contours)
     hole_report = HoleReport(bool(holes), len(holes), tuple(holes), test)
     slot_report = SlotReport(bool(slots), len(slots), tuple(slots))
     located = _locate(contact, shape, plane, depth_map, pose_matrix)

@@ -7,15 +7,19 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import replace
 from typing import Any, Unpack
 
 import cv2
 import numpy as np
 
+from taxel.features._contact import contact_regions
 from taxel.features._fitting import CircleFit, taubin_circle
-from taxel.features._gaps import HoleReport, SlotReport, gaps_core
+from taxel.features._gaps import Hole, HoleReport, Slot, SlotReport, gaps_core
 from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._sensor import require_square_taxels
+from taxel.features._shape import is_textured
+from taxel.features._texture import high_points
 from taxel.features._window import contact_hull
 
 __all__ = [
@@ -139,6 +143,15 @@ def outline_taxels(
     return points[:, 0], points[:, 1]
 
 
+def _gaps(prepared: Prepared) -> tuple[list[Hole], list[Slot]]:
+    """Holes and slots of a prepared image, told whether it is a texture as `extract` is."""
+    # a texture's basins are holes only when they make a perforated sheet, and never slots;
+    # its regions' areas are all that tells it (not their centres: no read-back)
+    regions = contact_regions(replace(prepared, read_back=None))
+    holes, slots, _ = gaps_core(prepared, textured=is_textured(regions, high_points(prepared)[0]))
+    return holes, slots
+
+
 def detect_holes(
     image: Any, sensor_or_pitch: Any, **preparation: Unpack[Preparation]
 ) -> HoleReport:
@@ -181,7 +194,7 @@ def detect_holes(
     """
     prepared = prepare(image, sensor_or_pitch, **preparation)
     require_square_taxels(prepared.pitch, "the hole tests", prepared.hexagonal)
-    holes, _, _ = gaps_core(prepared)
+    holes, _ = _gaps(prepared)
     contours = outline_contours(prepared)
     test = diameter_test(prepared, *outline_taxels(prepared, contours), contours=contours)
     return HoleReport(bool(holes), len(holes), tuple(holes), test)
@@ -222,5 +235,5 @@ def detect_slots(
     (8, 48, 0.0)
     """
     prepared = prepare(image, sensor_or_pitch, **preparation)
-    _, slots, _ = gaps_core(prepared)
+    _, slots = _gaps(prepared)
     return SlotReport(bool(slots), len(slots), tuple(slots))
