@@ -237,7 +237,7 @@ class ContactShape:
 
 
 def is_textured(contact: Contact, high_point_count: int) -> bool:
-    """Whether a contact is a texture: 3 or more sizeable regions, or 5 or more high points."""
+    """Whether a contact is a texture: 3 or more sizeable regions, or 3 or more high points."""
     total = sum(r.area_taxels for r in contact.regions)
     major_regions = sum(r.area_taxels >= _MINOR_REGION * total for r in contact.regions)
     return major_regions >= _MANY_REGIONS or high_point_count >= _MANY_HIGH_POINTS
