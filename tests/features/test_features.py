@@ -849,6 +849,8 @@ def test_bad_options():
         extract(image, 1e-3, depth=np.full((8, 8), 1e300))
     with pytest.raises(ValueError, match=r"within \+-1 m, got 2"):
         extract(image, 1e-3, depth=np.eye(8) * -2.0)
+    with pytest.raises(ValueError, match=r"within \+-1 m, got 5"):  # (the same check)
+        contact_plane(image, 1e-3, depth=np.full((8, 8), 5.0))
     with pytest.raises(ValueError, match="`noise` must be > 0, got -1"):
         extract(image, 1e-3, noise=-1.0)
 

@@ -103,7 +103,9 @@ def test_a_small_contact_in_noise_keeps_to_its_mask(vhdta):
 def test_frames_the_model_does_not_read_back_weigh_the_image(vhdta):
     raw, _ = _pressed(vhdta, "punch", 5.0, (1e-3, 0.0))
     assert prepare(raw, vhdta).read_back is not None
-    assert prepare(raw, vhdta, calibrated=True).read_back is None
+    assert prepare(raw.astype(float), vhdta, calibrated=True).read_back is None
+    with pytest.raises(ValueError, match=r"`image` holds integers \(uint8\), the sensor's raw"):
+        prepare(raw, vhdta, calibrated=True)
     assert prepare(raw, vhdta.taxel_pitch).read_back is None
     resistive = make_sensor("resistive16")
     assert prepare(np.zeros(resistive.shape), resistive).read_back is None

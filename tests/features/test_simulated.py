@@ -247,7 +247,7 @@ def test_noise_sensor_is_asked_for_on_raw_frames_of_a_sensor():
     assert prepare(raw, sensor).raw_noise == pytest.approx(42.27, abs=0.01)
     assert prepare(raw, sensor, noise="sensor").raw_noise == noise
     with pytest.raises(ValueError, match="`noise='sensor'` is the noise of the sensor's raw"):
-        extract(raw, sensor, calibrated=True, noise="sensor")
+        extract(raw.astype(float), sensor, calibrated=True, noise="sensor")
     with pytest.raises(ValueError, match="`noise` must be a number or 'sensor', got 'camera'"):
         extract(raw, sensor, noise="camera")
     with pytest.raises(TypeError, match="`noise='sensor'` needs `sensor_or_pitch` to be a"):

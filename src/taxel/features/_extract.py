@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from taxel._validation import as_finite_array, check_positive, check_range
+from taxel._validation import check_positive, check_range
 from taxel.features._contact import Contact, contact_regions
 from taxel.features._fitting import CircleFit, LineFit, fit_line_and_circle
 from taxel.features._gaps import HoleReport, SlotReport, gaps_core
@@ -17,15 +17,11 @@ from taxel.features._holes import diameter_test, outline_contours, outline_taxel
 from taxel.features._image import prepare
 from taxel.features._record import record
 from taxel.features._shape import ContactShape, is_textured, shape_core
-from taxel.features._surface import ContactPlane, plane_core
+from taxel.features._surface import ContactPlane, checked_depth, plane_core
 from taxel.features._texture import Texture, texture_core
 from taxel.frames import as_pose
 
 __all__ = ["ContactPose", "TactileFeatures", "extract"]
-
-# A cover's indentation is millimetres; beyond a metre a depth map is in other units (and
-# its squares overflow in the plane fit).
-_DEEPEST = 1.0  # [m]
 
 
 @record
@@ -321,20 +317,7 @@ def extract(
     point_size = check_positive("point_size", point_size)
     texture_sigma = check_range("texture_sigma", texture_sigma, 0.0, 20.0, low_inclusive=False)
     pose_matrix = None if pose is None else as_pose(pose)
-    depth_map = None
-    if depth is not None:
-        depth_map = as_finite_array("depth", depth, ndim=2)
-        if depth_map.shape != prepared.image.shape:
-            raise ValueError(
-                f"`depth` must have the image's shape {prepared.image.shape}, "
-                f"got {depth_map.shape}"
-            )
-        deepest = float(np.max(np.abs(depth_map)))
-        if deepest > _DEEPEST:
-            raise ValueError(
-                f"`depth` is an indentation in metres and must lie within +-{_DEEPEST:g} m, "
-                f"got {deepest:.3g}"
-            )
+    depth_map = checked_depth(depth, prepared.image.shape)
     contact = contact_regions(prepared)
     texture = texture_core(prepared, sigma=texture_sigma)
     textured = is_textured(contact, texture.maxima_count)

@@ -375,6 +375,14 @@ def prepare(
     given = as_image(image)
     check_image_shape(given.shape, sensor_or_pitch)
     calibrated = check_flag("calibrated", calibrated)
+    reads_frames = callable(getattr(sensor_or_pitch, "frame_from_pressure", None))
+    if calibrated and reads_frames and np.asarray(image).dtype.kind in "biu":
+        # (as the command line judges a file: a sensor's output is integer codes)
+        raise ValueError(
+            f"`image` holds integers ({np.asarray(image).dtype}), the sensor's raw codes, not "
+            "pressure [Pa]: leave out calibrated=True for a raw frame, or give a pressure map "
+            "in real numbers"
+        )
     if reference is not None:
         tare = as_image(reference, "reference")
         if tare.shape != given.shape:

@@ -14,7 +14,11 @@ from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._record import record
 from taxel.features._window import contact_area, contact_hull, contact_window
 
-__all__ = ["ContactPlane", "contact_plane", "plane_core"]
+__all__ = ["ContactPlane", "checked_depth", "contact_plane", "plane_core"]
+
+# A cover's indentation is millimetres; beyond a metre a depth map is in other units (and
+# its squares overflow in the plane fit).
+_DEEPEST = 1.0  # [m]
 
 _ERODE = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (5, 5))
 
@@ -148,11 +152,20 @@ def contact_plane(
     (0.93, [0.1, 0.0, 0.995])
     """
     prepared = prepare(image, sensor_or_pitch, **preparation)
-    array = None
-    if depth is not None:
-        array = as_finite_array("depth", depth, ndim=2)
-        if array.shape != prepared.image.shape:
-            raise ValueError(
-                f"`depth` must have the image's shape {prepared.image.shape}, got {array.shape}"
-            )
-    return plane_core(prepared, array)
+    return plane_core(prepared, checked_depth(depth, prepared.image.shape))
+
+
+def checked_depth(depth: Any, shape: tuple[int, ...]) -> np.ndarray | None:
+    """`depth` checked: finite, of the image's `shape`, within +-`_DEEPEST` m (internal)."""
+    if depth is None:
+        return None
+    array = as_finite_array("depth", depth, ndim=2)
+    if array.shape != shape:
+        raise ValueError(f"`depth` must have the image's shape {shape}, got {array.shape}")
+    deepest = float(np.max(np.abs(array)))
+    if deepest > _DEEPEST:
+        raise ValueError(
+            f"`depth` is an indentation in metres and must lie within +-{_DEEPEST:g} m, "
+            f"got {deepest:.3g}"
+        )
+    return array
