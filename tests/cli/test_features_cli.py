@@ -93,6 +93,12 @@ def test_known_noise_finds_a_texture_that_covers_the_array(tmp_path, capsys):
         ("badpose", ["--pitch", "1e-3", "--pose", "POSE"], "not valid JSON"),
         ("frame", ["--pitch", "1e-3", "--noise", "-2"], "argument --noise: must be > 0, got -2"),
         ("frame", ["--pitch", "1e-3", "--noise", "nan"], "argument --noise: must be > 0, got nan"),
+        (
+            "small",
+            ["--pitch", "5e-3"],
+            "4 interior taxel(s) cannot estimate its own noise (it "
+            "needs 16): give --noise (one taxel's noise sigma, in the image's units) or --sensor",
+        ),
     ],
 )
 def test_errors_are_one_line(tmp_path, capsys, washer, setup, extra, match):
@@ -103,6 +109,8 @@ def test_errors_are_one_line(tmp_path, capsys, washer, setup, extra, match):
         target.write_text("1,2")
     if setup == "nan":
         np.save(frame, np.full((8, 8), np.nan))
+    if setup == "small":  # a 4 x 4 array: too small to tell its noise from a contact
+        np.save(frame, np.pad(np.full((2, 2), 100.0), 1))
     if setup == "archive":
         target = tmp_path / "two.npz"
         np.savez(target, a=washer, b=washer)

@@ -646,8 +646,8 @@ def test_known_noise_tells_a_fine_texture_from_noise():
 
 def test_known_noise_finds_a_press_on_a_four_by_four_array():
     # a ball pressed on capacitive4x4 (5 mm pitch, noise about 30 counts): the 2 x 2
-    # interior, where the image's own noise is estimated, is all contact, so the estimate
-    # (about 4000 counts) is the contact itself and buries it; told the noise, it is there
+    # interior, where the image's own noise would be estimated, is all contact (the
+    # estimate, about 4000 counts, buried it): the noise must be told; told, it is there
     frame = np.array(
         [
             [3285, 3514, 3482, 3186],
@@ -656,7 +656,8 @@ def test_known_noise_finds_a_press_on_a_four_by_four_array():
             [3212, 3432, 3528, 3210],
         ]
     )
-    assert not find_contact(frame, 5e-3).present
+    with pytest.raises(ValueError, match=r"an image with 4 interior taxel\(s\) cannot estimate"):
+        find_contact(frame, 5e-3)
     contact = find_contact(frame, 5e-3, noise=30.0)
     assert contact.present and len(contact.regions) == 1
     assert contact.area_m2 == pytest.approx(4 * 25e-6)

@@ -321,7 +321,9 @@ def _run(arguments: argparse.Namespace) -> int:
     try:
         features = extract(given, pitch, pose=pose, depth=depth, **preparation)
     except ValueError as error:  # ("`image` must be at least 3x3 taxels"): the file is named
-        raise ValueError(str(error).replace("`image`", f"{arguments.file}: the image")) from None
+        message = str(error).replace("`image`", f"{arguments.file}: the image")
+        message = message.replace("`noise`", "--noise").replace("a sensor description", "--sensor")
+        raise ValueError(message) from None
     _warn_if_defects_erased(arguments, features, given, pitch, preparation)
     _warn_if_pressed_all_over(arguments, features, image, pitch)
     if arguments.figure:  # first: a figure that cannot be written stops before any output
@@ -382,7 +384,8 @@ def register(commands: Any) -> None:
         "as right as the preset's model: a noisier frame then shows contacts in its noise). "
         "By default estimated from the image, which takes a texture as fine as the taxels "
         "over the whole array for noise; a raw frame of a --sensor with fewer than 16 "
-        "interior taxels (capacitive4x4), too small for the estimate, takes the preset's",
+        "interior taxels (capacitive4x4), too small for the estimate, takes the preset's; "
+        "given --pitch, such an image needs --noise",
     )
     parser.add_argument(
         "--defects",

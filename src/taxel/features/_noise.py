@@ -116,9 +116,10 @@ def taxel_noise(
     `quantum`: the step the residual's values are multiples of, or 0 (`noise_from_residual`).
 
     By default (None) estimated from the image's Laplacian residual, unless the image
-    has too few interior taxels for the estimate (`_SMALL_IMAGE`) and comes from a sensor
-    that reads frames: then the sensor's own (`sensor_noise`), in pascals for a
-    calibrated image (through the sensor's `flat_plate_gain`).
+    has too few interior taxels for the estimate (`_SMALL_IMAGE`): then the sensor's own
+    (`sensor_noise`), in pascals for a calibrated image (through the sensor's
+    `flat_plate_gain`), when `sensor_or_pitch` is a sensor that reads frames; else a
+    ValueError asks for `noise`.
     """
     if noise is None:
         small = interior < _SMALL_IMAGE
@@ -128,6 +129,14 @@ def taxel_noise(
             gain = abs(float(getattr(sensor_or_pitch, "flat_plate_gain", 0.0)))
             if gain > 0:
                 return sensor_noise(sensor_or_pitch) / gain
+        if small:
+            # a contact would be most of the estimate: on a 4 x 4 array a ball's 2 x 2
+            # press, a residual of 4000 counts under 30 of noise, buried itself
+            raise ValueError(
+                f"an image with {interior} interior taxel(s) cannot estimate its own noise (it "
+                f"needs {_SMALL_IMAGE}): give `noise` (one taxel's noise sigma, in the image's "
+                "units) or a sensor description"
+            )
         return noise_sigma(residual, quantum)
     if isinstance(noise, str):
         if noise != "sensor":
