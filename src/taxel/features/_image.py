@@ -351,9 +351,9 @@ def prepare(
         than 16 interior taxels (a 4 x 4 array) cannot give it at all, and takes the
         sensor's own noise when `sensor_or_pitch` is a sensor description that reads
         frames (`sensor_noise`; in pascals through its `flat_plate_gain` when the image
-        is calibrated); given a bare pitch, it needs `noise`. "sensor" takes the sensor's noise on any raw frame; it
-        is only as right as the sensor's model: frames noisier than the model then show
-        contacts in their noise.
+        is calibrated); given a bare pitch, it needs `noise`. "sensor" takes the sensor's
+        noise on any raw frame; it is only as right as the sensor's model: frames noisier
+        than the model then show contacts in their noise.
     reference : array_like, shape (rows, cols), optional
         The sensor's unloaded frame (better, the mean of several), subtracted first: a tare
         that takes away what no contact makes (the scratches of an FTIR sensor's glass,
