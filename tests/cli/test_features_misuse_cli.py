@@ -82,3 +82,22 @@ def test_an_image_too_small_is_named(tmp_path, capsys, shape):
     assert main(["features", str(path), "--pitch", "1e-3"]) == 2
     err = _one_line(capsys)
     assert f"error: {path}: the image must be at least 3x3 taxels, got shape {shape}" in err
+
+
+def test_a_link_to_a_missing_file_is_not_replaced_without_overwrite(tmp_path, capsys, washer):
+    # the link is something the user made: replacing it needs --overwrite, as a file does
+    frame, link = tmp_path / "frame.npy", tmp_path / "figure.png"
+    np.save(frame, washer)
+    link.symlink_to(tmp_path / "elsewhere.png")
+    assert main(["features", str(frame), "--pitch", "1e-3", "--figure", str(link)]) == 2
+    assert _one_line(capsys) == (
+        f"taxel features: error: --figure {str(link)!r} exists; pass --overwrite to replace it\n"
+    )
+    assert link.is_symlink() and not (tmp_path / "elsewhere.png").exists()
+
+
+def test_an_empty_figure_name_is_refused(tmp_path, capsys, washer):
+    frame = tmp_path / "frame.npy"
+    np.save(frame, washer)
+    assert main(["features", str(frame), "--pitch", "1e-3", "--figure", ""]) == 2
+    assert _one_line(capsys) == "taxel features: error: --figure must name a .png file, got ''\n"

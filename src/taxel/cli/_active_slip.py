@@ -73,7 +73,7 @@ def slip(arguments: argparse.Namespace) -> int:
             f"--piezo-time-constant {arguments.piezo_time_constant:g}: it is the PVDF "
             "amplifiers'; give their frames with --piezo-key"
         )
-    if arguments.figure:  # before the work: a figure that cannot be written stops here
+    if arguments.figure is not None:  # before the work: a figure that cannot be written stops here
         from taxel.io import check_new_file
 
         check_new_file(
@@ -88,7 +88,7 @@ def slip(arguments: argparse.Namespace) -> int:
     )
     static_key, static, piezo_key, piezo = _read(arguments, detector.warm_up)
     detection = detector.run(static, piezo, frame_rate=arguments.frame_rate)
-    if arguments.figure:
+    if arguments.figure is not None:
         from taxel.viz import plot_slip
 
         with writing("--figure", arguments.figure):

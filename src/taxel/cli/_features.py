@@ -257,7 +257,7 @@ def _run(arguments: argparse.Namespace) -> int:
     pitch = _pitch(arguments)
     _check_noise(arguments)
     _check_images(arguments, pitch)
-    if arguments.figure:
+    if arguments.figure is not None:
         from taxel.io import check_new_file
 
         check_new_file(
@@ -326,7 +326,7 @@ def _run(arguments: argparse.Namespace) -> int:
         raise ValueError(message) from None
     _warn_if_defects_erased(arguments, features, given, pitch, preparation)
     _warn_if_pressed_all_over(arguments, features, image, pitch)
-    if arguments.figure:  # first: a figure that cannot be written stops before any output
+    if arguments.figure is not None:  # first: a figure that cannot be written stops all output
         from taxel.viz import plot_features
 
         figure = plot_features(given, features, pitch, **preparation)

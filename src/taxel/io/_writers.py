@@ -60,7 +60,7 @@ def check_new_file(
     for source in inputs:
         if Path(source).exists() and target.exists() and target.samefile(source):
             raise ValueError(f"{label} {str(target)!r} is an input file; choose another")
-    if target.exists() and not overwrite:
+    if os.path.lexists(target) and not overwrite:  # (a link to a missing file is one too)
         how = "--overwrite" if name.startswith("--") else "overwrite=True"
         raise FileExistsError(f"{label} {str(target)!r} exists; pass {how} to replace it")
     _check_folder_takes_files(target, label)
