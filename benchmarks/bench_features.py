@@ -4,7 +4,9 @@ Speed: the full feature set on 128x128 and 16x16 frames of each synthetic indent
 ``tests/features/synthetic.py``. Accuracy: >= 1000 labelled frames per sensor from the sensor
 simulator (``features_scenes.py``: every indenter, random position, rotation, size, force,
 noise and sensor pose), scored for contact type (per-class confusion), hole and slot F1,
-centroid, line angle, arc radius and 3-D position errors.
+centroid, line angle, arc radius and 3-D position errors. Also: frames at rest
+(``features_rest.py``), a camera that differs from its model (``features_camera.py``) and the
+seed's texture experiment.
 
 Run alone: ``python benchmarks/bench_features.py [--quick] [--seed N]``; ``--details``
 also prints every misclassified frame (for development).
@@ -28,6 +30,7 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "tests" / "features"))
 import synthetic  # noqa: E402
 
+import features_camera  # noqa: E402
 import features_rest  # noqa: E402
 import features_scenes  # noqa: E402
 import features_speed  # noqa: E402
@@ -581,6 +584,9 @@ def run(quick: bool = False, seed: int = SEED, details: bool = False) -> str:
     timing_round()
     rest = features_rest.section(quick, seed, evaluate)
     timing_round()
+    camera = features_camera.section(
+        frames["vhdta128"], features_scenes.benchmark_sensor("vhdta128"), quick
+    )
     texture = _seed_texture(quick)
     timing_round(last=True)
     parts = [
@@ -602,6 +608,7 @@ def run(quick: bool = False, seed: int = SEED, details: bool = False) -> str:
         simulated,
         accuracy,
         rest,
+        camera,
         texture,
     ]
     return "\n".join(parts)
