@@ -53,6 +53,18 @@ def test_a_ramp_across_the_array_leaves_an_edge_where_it_lies(vhdta, rise):
     assert np.ptp(tilt[:, 0]) < 0.05 * rise  # no tilt down the columns
 
 
+def test_a_ramp_that_lifts_most_of_the_array_over_the_cut_is_taken_out(vhdta):
+    # 3 grey levels across, under a cut 3.4 above the baseline: the lit side joins the
+    # edge and leaves under 15 % of the array as background, so the tilt is read away from
+    # the seeds; taken out, it leaves the background again, which is how it is told from
+    # a texture's faint light. It was kept only when it rose by the whole cut: the edge
+    # read as a surface 27.7 taxels off (0.11 now)
+    raw, truth = _pressed(vhdta, "edge", 2.0, (-4e-3, 3e-3))
+    features = extract(_ramped(raw, 3.0), vhdta)
+    assert features.contact_type == "line"
+    assert _error(features.contact.centroid_m, truth, vhdta) < 0.2
+
+
 def test_a_small_ramp_is_taken_out_of_the_read_back(vhdta):
     # 1.5 grey levels across do not move the cut (no tilt taken out before it), but the
     # read-back weighs the background's light: a punch was 0.50 taxel off, 0.02 now
