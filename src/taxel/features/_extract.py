@@ -273,8 +273,8 @@ def extract(
         estimated from the image if omitted (a texture as fine as the taxels over the whole
         array then reads as noise), except on an image too small to give it (under 16
         interior taxels), which takes the sensor's, or needs `noise` given a bare pitch.
-        "sensor": the noise of the
-        sensor's raw frames (`sensor_noise`) on any raw frame (see `prepare`).
+        "sensor": the noise of the sensor's raw frames (`sensor_noise`) on any raw frame
+        (see `prepare`).
     reference : array_like, shape (rows, cols), optional
         The sensor's unloaded frame, or the mean of several, subtracted first (a tare):
         it removes the fixed pattern no contact makes (an FTIR glass's scratches, taxel

@@ -62,8 +62,8 @@ _RADII = (0, 2, 4, 8, 16, 32)
 # array is such a level, taken out of the light when the background is half the array
 # or more (`pressure_centre`); its tilts only where over `_SIGNIFICANT` standard errors.
 # Without a tilt, a constant level is taken out from `_SIGNIFICANT` standard errors of
-# its mean (a few hundredths of a grey level): two pens far apart on a camera 0.2-0.45
-# grey levels brighter were 2.7-8.0 taxels off under the union of their windows, where
+# its mean (a few hundredths of a grey level): two pens far apart on a camera -0.2 to
+# 0.45 grey levels off were 2.65-8.0 taxels off under the union of their windows, where
 # the offset weighs as much as the pens (2.0 without the offset, and now). A tilt below
 # `_OFFSET` is not taken out: a can's rim lit its far background by 0.4 grey levels
 # across, a light contact's faint tail, not the camera's, and taking it out put the rim
