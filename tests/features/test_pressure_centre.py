@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 from scipy import special
 
+import taxel.features._contact as contact_module
 from taxel.features import contact_regions, extract, prepare
 from taxel.features._pressure_centre import _background, _box_counts, _box_sums, _grown
 from taxel.features._response import (
@@ -448,8 +449,6 @@ def test_a_read_back_far_from_the_image_centre_is_not_kept(vhdta, monkeypatch):
     # the same contact weighed two ways: a read-back more than two cover depths (7.8
     # taxels) from the image's centre weighs what the frame's model gets wrong, not the
     # contact: the image's centre is kept; within them, the read-back's
-    import taxel.features._contact as contact_module
-
     pen, _ = _pressed(vhdta, "pen", 1.0, (2e-3, 1e-3))
     weighed = _image_weighed(pen, vhdta)
     for shift, kept in ((9.0, weighed), (6.0, (weighed[0] + 6.0, weighed[1]))):
