@@ -426,6 +426,10 @@ def test_a_camera_s_small_offset_under_two_pens_is_taken_out(vhdta):
     for offset in (-0.2, 0.1, 0.2, 0.3, 0.45, 0.7):
         moved = extract(unlit + offset, vhdta).contact.centroid_m
         assert moved == pytest.approx(clean, abs=0.01 * vhdta.taxel_pitch[0])
+    # under half a grey level of tilt (left in: see `_OFFSET`), the level where the
+    # background lies is still taken out: 0.3 and a ramp of 0.15 across, 9.5 -> 1.6
+    ramped = unlit + 0.3 + np.linspace(0.0, 0.15, unlit.shape[1])[None, :]
+    assert _error(extract(ramped, vhdta).contact.centroid_m, truth, vhdta) < 2.0
 
 
 def test_a_level_without_a_tilt_is_taken_out_when_significant(vhdta):

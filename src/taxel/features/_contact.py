@@ -462,11 +462,11 @@ def find_contact(
 
     The read-back assumes the model's unloaded level (its dark level and glass), which the
     background beyond the contact's reach checks: darker than it, or streaked darker
-    (another glass), the frame is not the model's and its image is weighed; brighter and
-    lying on a plane (a camera's offset, uneven lighting: over half a grey level somewhere
-    on the array, or a level without a tilt standing 3 standard errors clear of 0, with
-    half the array or more beyond the reach), the plane is taken out of the light, its
-    tilts only where they stand 3 standard errors clear of noise. A
+    (another glass), the frame is not the model's and its image is weighed; brighter (or
+    darker by up to half a grey level) and lying on a plane (a camera's offset, uneven
+    lighting), with half the array or more beyond the reach, the plane is taken out of the
+    light when it stands over half a grey level somewhere, its tilts only where they stand
+    3 standard errors clear of noise; else its level alone, from 3 standard errors. A
     read-back more than two cover depths from the image's centre is not kept either. A
     raw frame's lighting tilt steep enough to move the contact's cut is taken out before
     segmentation (`prepare`). On 60 of the features benchmark's vhdta128 frames under a

@@ -16,9 +16,10 @@ from taxel.features._gaps import HoleReport, SlotReport, gaps_core
 from taxel.features._holes import diameter_test, outline_contours, outline_taxels
 from taxel.features._image import prepare
 from taxel.features._record import record
-from taxel.features._shape import ContactShape, is_textured, shape_core
+from taxel.features._shape import ContactShape, shape_core
 from taxel.features._surface import ContactPlane, checked_depth, plane_core
 from taxel.features._texture import Texture, texture_core
+from taxel.features._textured import is_textured
 from taxel.frames import as_pose
 
 __all__ = ["ContactPose", "TactileFeatures", "extract"]
@@ -253,7 +254,8 @@ def extract(
         measure displacement or depth: gives the contact plane's normal and the contact's z
         (within +-1 m).
     calibrated : bool, default False
-        The image holds pressure [Pa], so areas carry a total force [N].
+        The image holds pressure [Pa], so areas carry a total force [N] (refused for an
+        integer image of a sensor that reads frames: its raw codes).
     smoothing : float, default 1.0
         Gaussian sigma before segmentation and edges [taxels].
     baseline : float, optional

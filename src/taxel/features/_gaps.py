@@ -374,9 +374,11 @@ def _perforated(holes: list[Hole], evenness: list[float]) -> bool:
     return float(radii.std()) <= _SHEET_SPREAD * float(radii.mean()) and even >= _SHEET_EVENNESS
 
 
-def gaps_core(
-    prepared: Prepared, *, textured: bool = False
-) -> tuple[list[Hole], list[Slot], np.ndarray | None]:
+# holes, slots, and the mask of the gaps they occupy (None without a gap)
+GapsFound = tuple[list[Hole], list[Slot], np.ndarray | None]
+
+
+def gaps_core(prepared: Prepared, *, textured: bool = False) -> GapsFound:
     """Holes, slots, and the mask of the gaps they occupy (internal).
 
     `textured`: the contact is a texture (see `classify_contact`); its basins are then

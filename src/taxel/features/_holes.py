@@ -15,11 +15,10 @@ import numpy as np
 
 from taxel.features._contact import contact_regions
 from taxel.features._fitting import CircleFit, taubin_circle
-from taxel.features._gaps import Hole, HoleReport, Slot, SlotReport, gaps_core
+from taxel.features._gaps import Hole, HoleReport, Slot, SlotReport
 from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._sensor import require_square_taxels
-from taxel.features._shape import is_textured
-from taxel.features._texture import high_points
+from taxel.features._textured import textured_gaps
 from taxel.features._window import contact_hull
 
 __all__ = [
@@ -148,7 +147,7 @@ def _gaps(prepared: Prepared) -> tuple[list[Hole], list[Slot]]:
     # a texture's basins are holes only when they make a perforated sheet, and never slots;
     # its regions' areas are all that tells it (not their centres: no read-back)
     regions = contact_regions(replace(prepared, read_back=None))
-    holes, slots, _ = gaps_core(prepared, textured=is_textured(regions, high_points(prepared)[0]))
+    holes, slots, _ = textured_gaps(prepared, regions)[2]
     return holes, slots
 
 

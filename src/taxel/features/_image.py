@@ -326,7 +326,8 @@ def prepare(
         cover depth then decides `defects`; a frame of a hexagonal array (of a sensor or an
         `ArrayGeometry`) is resampled onto the rectangular grid.
     calibrated : bool, default False
-        The image holds pressure [Pa]: areas carry a total force.
+        The image holds pressure [Pa]: areas carry a total force. Refused for an integer
+        image of a sensor that reads frames (its raw codes).
     smoothing : float, default 1.0
         Sigma of the Gaussian smoothing [taxels], 0 to disable.
     baseline : float, optional
@@ -376,8 +377,8 @@ def prepare(
     check_image_shape(given.shape, sensor_or_pitch)
     calibrated = check_flag("calibrated", calibrated)
     reads_frames = callable(getattr(sensor_or_pitch, "frame_from_pressure", None))
-    if calibrated and reads_frames and np.asarray(image).dtype.kind in "biu":
-        # (as the command line judges a file: a sensor's output is integer codes)
+    if calibrated and reads_frames and np.asarray(image).dtype.kind in "iu":
+        # a sensor's output is integer codes (the command line refuses any integer file)
         raise ValueError(
             f"`image` holds integers ({np.asarray(image).dtype}), the sensor's raw codes, not "
             "pressure [Pa]: leave out calibrated=True for a raw frame, or give a pressure map "

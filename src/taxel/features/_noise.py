@@ -123,7 +123,8 @@ def taxel_noise(
     """
     if noise is None:
         small = interior < _SMALL_IMAGE
-        if small and callable(getattr(sensor_or_pitch, "frame_from_pressure", None)):
+        reads_frames = callable(getattr(sensor_or_pitch, "frame_from_pressure", None))
+        if small and reads_frames:
             if not calibrated:
                 return sensor_noise(sensor_or_pitch)
             gain = abs(float(getattr(sensor_or_pitch, "flat_plate_gain", 0.0)))
@@ -135,7 +136,7 @@ def taxel_noise(
             raise ValueError(
                 f"an image with {interior} interior taxel(s) cannot estimate its own noise (it "
                 f"needs {_SMALL_IMAGE}): give `noise` (one taxel's noise sigma, in the image's "
-                "units) or a sensor description"
+                "units)" + ("" if reads_frames else " or a sensor description")
             )
         return noise_sigma(residual, quantum)
     if isinstance(noise, str):

@@ -61,13 +61,13 @@ _RADII = (0, 2, 4, 8, 16, 32)
 # texture's light contact by 2.3-2.6) and over `_OFFSET` grey levels somewhere on the
 # array is such a level, taken out of the light when the background is half the array
 # or more (`pressure_centre`); its tilts only where over `_SIGNIFICANT` standard errors.
-# Without a tilt, a constant level is taken out from `_SIGNIFICANT` standard errors of
-# its mean (a few hundredths of a grey level): two pens far apart on a camera -0.2 to
-# 0.45 grey levels off were 2.65-8.0 taxels off under the union of their windows, where
-# the offset weighs as much as the pens (2.0 without the offset, and now). A tilt below
-# `_OFFSET` is not taken out: a can's rim lit its far background by 0.4 grey levels
-# across, a light contact's faint tail, not the camera's, and taking it out put the rim
-# 2.7 taxels off (0.2 left in)
+# A plane under `_OFFSET` everywhere still has its level, where its points lie, taken out
+# from `_SIGNIFICANT` standard errors (a few hundredths of a grey level): two pens far
+# apart on a camera -0.2 to 0.45 grey levels off were 2.65-8.0 taxels off under the union
+# of their windows, where the offset weighs as much as the pens (2.0 without the offset,
+# and now; 0.3 with a ramp of 0.15 across, 9.5 -> 1.6). Its tilt is not: a can's rim lit
+# its far background by 0.4 grey levels across, a light contact's faint tail, not the
+# camera's, and taking it out put the rim 2.7 taxels off (0.2 left in)
 _FAR_TAXELS = 256
 _SAMPLE = 3
 _DARK = 0.5
@@ -141,9 +141,9 @@ def _background(
     the model's (None): a texture's light contact beyond the reach lifts the median, not
     the unloaded level. The level is that plane when the background lies on it (spread
     within `_FLAT` sigmas, as noise alone is: a camera's offset or uneven lighting, not a
-    texture's light contact) and it stands over `_OFFSET` somewhere on the array, or it
-    has no tilt and its constant level stands `_SIGNIFICANT` standard errors clear of 0;
-    else 0.
+    texture's light contact) and it stands over `_OFFSET` somewhere on the array; else
+    its level where its points lie (their mean), without its tilt, when that stands
+    `_SIGNIFICANT` standard errors clear of 0; else 0.
     Returned as (level at the first taxel, change per row, change per column);
     `grey_noise` must be positive.
     """
@@ -165,7 +165,8 @@ def _background(
         # array at 2 errors put its centre 2.7 taxels off)
         coefficients[1:][np.abs(coefficients[1:]) <= _SIGNIFICANT * errors[1:]] = 0.0
         # (the points' mean lies on the plane: about the first taxel)
-        coefficients[0] = values[inside].mean() - coefficients[1:] @ middle[1:]
+        centre_level = values[inside].mean()
+        coefficients[0] = centre_level - coefficients[1:] @ middle[1:]
         plane = coefficients @ design
         inside = np.abs(values - plane) <= clip
     dark = np.count_nonzero(values < np.minimum(plane, 0.0) - clip) / values.size
@@ -178,9 +179,9 @@ def _background(
     if spread <= _FLAT * grey_noise:
         if max(map(abs, corners)) > _OFFSET:
             return (float(coefficients[0]), float(coefficients[1]), float(coefficients[2]))
-        # (without a tilt, the level is the points' mean, and errors[0] its error)
-        if not coefficients[1:].any() and abs(coefficients[0]) > _SIGNIFICANT * errors[0]:
-            return (float(coefficients[0]), 0.0, 0.0)
+        # (errors[0]: the error of the level where the points lie, their mean)
+        if abs(centre_level) > _SIGNIFICANT * errors[0]:
+            return (float(centre_level), 0.0, 0.0)
     return (0.0, 0.0, 0.0)
 
 
@@ -301,12 +302,13 @@ def pressure_centre(prepared: Prepared, read: ReadBack) -> tuple[float, float] |
     (Lepski's rule, see the module notes).
     Windows whose pressure sums to nothing, or whose centre falls off the array, are
     passed over; None when every window is, or when the background beyond the reach is
-    not the model's (`_background`: darker than its unloaded level, or another glass's):
-    the image is then weighed. A brighter background lying on a plane beyond the reach is
-    a camera's offset from the model or its uneven lighting, taken out of the light when
-    over half a grey level somewhere (or, level, when 3 standard errors clear of 0) and
-    half the array or more lies beyond the reach (less is too little to tell it from a
-    texture's faint light contact). A raw frame's
+    not the model's (`_background`: darker than its unloaded level by over half a grey
+    level, or another glass's):
+    the image is then weighed. A background lying on a plane beyond the reach, brighter or
+    (by up to half a grey level) darker, is a camera's offset from the model or its uneven
+    lighting, taken out of the light when over half a grey level somewhere (else its level
+    alone, when 3 standard errors clear of 0) and half the array or more lies beyond the
+    reach (less is too little to tell it from a texture's faint light contact). A raw frame's
     tilt taken out before segmentation (`Prepared.tilt`) is taken out first.
     """
     noise_grey = grey_noise(read, prepared.raw_noise)

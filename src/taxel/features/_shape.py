@@ -71,7 +71,6 @@ from taxel.features._fitting import (
     fit_line_and_circle,
     line_through,
 )
-from taxel.features._gaps import gaps_core
 from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._measures import (
     band_fits,
@@ -98,21 +97,13 @@ from taxel.features._outline import (
 )
 from taxel.features._record import record
 from taxel.features._sensor import require_square_taxels
-from taxel.features._texture import high_points
+from taxel.features._textured import MANY_HIGH_POINTS, textured_gaps
 
-__all__ = ["CONTACT_TYPES", "ContactShape", "classify_contact", "is_textured", "shape_core"]
+__all__ = ["CONTACT_TYPES", "ContactShape", "classify_contact", "shape_core"]
 
 CONTACT_TYPES = ("none", "point", "line", "arc", "surface", "corner")
 _OutlineFit = tuple[LineFit, CircleFit]
 
-# Several contacts: a region counts when it holds >= 5 % of the contact area; three such
-# regions is a texture or a multi-point grip, not one shape.
-_MINOR_REGION = 0.05
-_MANY_REGIONS = 3
-# A single smooth body presses the cover with at most one peak (sphere, tip) or with a ridge
-# or a plateau, which have none (edge, rim, plate); three separate high points need three
-# touching asperities: a texture.
-_MANY_HIGH_POINTS = 3
 _MANY_HOLES = 2
 # Band: length (area / thickness) >= 1.5 thicknesses. A round body (sphere, punch, tip)
 # makes a round contact (area / thickness^2 = pi / 4 ~ 0.8) and a vertex a rounded
@@ -234,13 +225,6 @@ class ContactShape:
     size_m: float | None
     lobes: float | None
     rule: str
-
-
-def is_textured(contact: Contact, high_point_count: int) -> bool:
-    """Whether a contact is a texture: 3 or more sizeable regions, or 3 or more high points."""
-    total = sum(r.area_taxels for r in contact.regions)
-    major_regions = sum(r.area_taxels >= _MINOR_REGION * total for r in contact.regions)
-    return major_regions >= _MANY_REGIONS or high_point_count >= _MANY_HIGH_POINTS
 
 
 def _free_outline(
@@ -382,7 +366,7 @@ def shape_core(
     # a face's region is as long as it is thin wherever holes or gaps cut it: its
     # elongation says nothing of an edge, so the rules below that decide a face set it
     if textured:
-        if high_point_count >= _MANY_HIGH_POINTS:
+        if high_point_count >= MANY_HIGH_POINTS:
             return result("surface", 1.0, 0.0, "many high points (texture)", 0.0)
         return result("surface", 1.0, 0.0, "several contacts (texture)", 0.0)
     if n_holes >= _MANY_HOLES:
@@ -474,9 +458,7 @@ def classify_contact(
     point_size = check_positive("point_size", point_size)
     prepared = prepare(image, sensor_or_pitch, **preparation)
     contact = contact_regions(prepared)
-    count = high_points(prepared)[0]
-    textured = is_textured(contact, count)
-    holes, slots, explained = gaps_core(prepared, textured=textured)
+    count, textured, (holes, slots, explained) = textured_gaps(prepared, contact)
     return shape_core(
         prepared,
         contact,
