@@ -12,14 +12,14 @@ import numpy as np
 from taxel._validation import check_positive, check_range
 from taxel.features._contact import Contact, contact_regions
 from taxel.features._fitting import CircleFit, LineFit, fit_line_and_circle
-from taxel.features._gaps import HoleReport, SlotReport, gaps_core
+from taxel.features._gaps import HoleReport, SlotReport
 from taxel.features._holes import diameter_test, outline_contours, outline_taxels
 from taxel.features._image import prepare
 from taxel.features._record import record
 from taxel.features._shape import ContactShape, shape_core
 from taxel.features._surface import ContactPlane, checked_depth, plane_core
 from taxel.features._texture import Texture, texture_core
-from taxel.features._textured import is_textured
+from taxel.features._textured import judged_gaps
 from taxel.frames import as_pose
 
 __all__ = ["ContactPose", "TactileFeatures", "extract"]
@@ -323,8 +323,9 @@ def extract(
     depth_map = checked_depth(depth, prepared.image.shape)
     contact = contact_regions(prepared)
     texture = texture_core(prepared, sigma=texture_sigma)
-    textured = is_textured(contact, texture.maxima_count)
-    holes, slots, explained = gaps_core(prepared, textured=textured)
+    textured, (holes, slots, explained) = judged_gaps(
+        prepared, contact, texture.maxima_count, texture_sigma
+    )
     contours = list(outline_contours(prepared))
     cols, rows = outline_taxels(prepared, contours)
     fits: list[tuple[LineFit, CircleFit] | None] = []

@@ -18,11 +18,11 @@ from taxel.features._record import record
 from taxel.features._spectrum import OCTAVES, ripple_spectrum
 from taxel.features._window import WHOLE_IMAGE, contact_area, contact_box, contact_window
 
-__all__ = ["Texture", "high_points", "texture_core", "texture_measures"]
+__all__ = ["TEXTURE_SIGMA", "Texture", "high_points", "texture_core", "texture_measures"]
 
 # The seed smooths before counting maxima, against camera noise and glass scratches; 2
 # taxels keeps bumps a few taxels apart (the rasp's teeth) and merges single-taxel specks.
-_TEXTURE_SIGMA = 2.0
+TEXTURE_SIGMA = 2.0
 # A high point of the object is a local maximum inside the contact that stands above every
 # point of the circle of radius 2 sigma around it by 4 noise sigmas (of the texture-smoothed
 # image, the noise measured inside the contact, where a camera's shot noise is larger than
@@ -200,7 +200,11 @@ def _contact_noise(prepared: Prepared) -> float:
     return noise_from_residual(residual, quantum=prepared.residual_quantum)
 
 
-def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[int, float]:
+# From this many high points on, their places (x, y) are kept in ``prepared.memo``
+_KEEP_PLACES = 3
+
+
+def high_points(prepared: Prepared, *, sigma: float = TEXTURE_SIGMA) -> tuple[int, float]:
     """Number and mean height above the baseline of the contact's high points (internal).
 
     (Analysing the smoothed image on every other taxel would be 4 times cheaper, but a
@@ -303,6 +307,9 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     count = int(np.count_nonzero(peaked))
     if not count:
         return 0, 0.0
+    if count >= _KEEP_PLACES:  # (a texture's, or a few corners': see `_textured`)
+        kept = points[high] if strong < high.size else points
+        prepared.memo[("high points", sigma)] = kept[peaked] + np.array([c0, r0])
     if count < peaked.size:
         heights = heights[peaked]
     if count > 1 and not tied:
@@ -315,7 +322,7 @@ def high_points(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> tuple[i
     return count, mean32(heights) - prepared.baseline
 
 
-def texture_core(prepared: Prepared, *, sigma: float = _TEXTURE_SIGMA) -> Texture:
+def texture_core(prepared: Prepared, *, sigma: float = TEXTURE_SIGMA) -> Texture:
     """Texture measures of a prepared image (internal core of `texture_measures`)."""
     if not prepared.present:
         return Texture(0, math.nan, 0.0, None, None, (0.0,) * OCTAVES, 0.0)
@@ -342,7 +349,7 @@ def texture_measures(
     image: Any,
     sensor_or_pitch: Any,
     *,
-    sigma: float = _TEXTURE_SIGMA,
+    sigma: float = TEXTURE_SIGMA,
     **preparation: Unpack[Preparation],
 ) -> Texture:
     """Texture of a tactile image: the seed's two measures and a spectral one.

@@ -2,16 +2,27 @@
 
 A texture's basins are holes only when they make a perforated sheet, and never slots
 (`taxel.features._gaps`); `extract` and the one-feature functions judge it alike.
+
+A plate's slot can stand out as high points too: on a thin or no cover the pressure peaks
+at its sharp corners, and a synthetic plate's slot read as a texture of 3-4 high points,
+whose basins are no slots. High points on the rim of the one slot a plate shows (within a
+taxel of where it lies, grown by 3) are its corners, not asperities: the contact is then
+a texture only if 3 high points lie away from it. Not so for a hole: on the features
+benchmark's second draw, foam pressed at 186 N left one basin between its 3 high points,
+which then read as a false hole.
 """
 
 from __future__ import annotations
 
+import cv2
+import numpy as np
+
 from taxel.features._contact import Contact
 from taxel.features._gaps import GapsFound, gaps_core
 from taxel.features._image import Prepared
-from taxel.features._texture import high_points
+from taxel.features._texture import TEXTURE_SIGMA, high_points
 
-__all__ = ["MANY_HIGH_POINTS", "is_textured", "textured_gaps"]
+__all__ = ["MANY_HIGH_POINTS", "is_textured", "judged_gaps", "textured_gaps"]
 
 # Several contacts: a region counts when it holds >= 5 % of the contact area; three such
 # regions is a texture or a multi-point grip, not one shape.
@@ -21,21 +32,61 @@ _MANY_REGIONS = 3
 # or a plateau, which have none (edge, rim, plate); three separate high points need three
 # touching asperities: a texture.
 MANY_HIGH_POINTS = 3
+_AROUND = np.ones((3, 3), np.uint8)
+
+
+def _many_regions(contact: Contact) -> bool:
+    """Whether 3 or more of the contact's regions are sizeable."""
+    total = sum(r.area_taxels for r in contact.regions)
+    major_regions = sum(r.area_taxels >= _MINOR_REGION * total for r in contact.regions)
+    return major_regions >= _MANY_REGIONS
 
 
 def is_textured(contact: Contact, high_point_count: int) -> bool:
-    """Whether a contact is a texture: 3 or more sizeable regions, or 3 or more high points."""
-    total = sum(r.area_taxels for r in contact.regions)
-    major_regions = sum(r.area_taxels >= _MINOR_REGION * total for r in contact.regions)
-    return major_regions >= _MANY_REGIONS or high_point_count >= MANY_HIGH_POINTS
+    """Whether a contact is a texture: 3 or more sizeable regions, or 3 or more high points.
+
+    (Before any high point is told a gap's corner: see `judged_gaps`.)
+    """
+    return _many_regions(contact) or high_point_count >= MANY_HIGH_POINTS
+
+
+def _at_rim(prepared: Prepared, explained: np.ndarray | None, sigma: float) -> int:
+    """How many high points lie on the gaps' rims (`explained`, grown by one more taxel)."""
+    if explained is None:
+        return 0
+    places = prepared.memo[("high points", sigma)]  # (x, y), kept from 3 high points on
+    rims = cv2.dilate(explained, _AROUND)
+    return int(np.count_nonzero(rims[places[:, 1], places[:, 0]]))
+
+
+def judged_gaps(
+    prepared: Prepared, contact: Contact, high_point_count: int, sigma: float = TEXTURE_SIGMA
+) -> tuple[bool, GapsFound]:
+    """Whether the contact is a texture, and the gaps `gaps_core` finds so told.
+
+    `high_point_count`: `high_points` of `prepared` with this `sigma`. A contact textured
+    by its high points alone (3 or more, in under 3 sizeable regions) whose gaps, looked
+    for as a plain contact's, are one slot is not a texture when fewer than 3 of its high
+    points lie away from that slot's rim (see the module notes). Such a contact's gaps are
+    looked for twice, plainly and as a texture's (`gaps_core` runs twice).
+    """
+    textured = is_textured(contact, high_point_count)
+    if textured and not _many_regions(contact):
+        plain = gaps_core(prepared, textured=False)
+        holes, slots, explained = plain
+        if len(slots) == 1 and not holes:
+            away = high_point_count - _at_rim(prepared, explained, sigma)
+            if away < MANY_HIGH_POINTS:
+                return False, plain
+    return textured, gaps_core(prepared, textured=textured)
 
 
 def textured_gaps(prepared: Prepared, contact: Contact) -> tuple[int, bool, GapsFound]:
     """High points, whether a texture, and the gaps `gaps_core` finds so told.
 
-    As `extract` finds them (with the default texture sigma), for the one-feature
-    functions; `contact`'s regions' areas are all the texture test reads.
+    As `extract` finds them (with the default texture sigma, `judged_gaps`), for the
+    one-feature functions; `contact`'s regions' areas are all the texture test reads.
     """
     count = high_points(prepared)[0]
-    textured = is_textured(contact, count)
-    return count, textured, gaps_core(prepared, textured=textured)
+    textured, gaps = judged_gaps(prepared, contact, count)
+    return count, textured, gaps
