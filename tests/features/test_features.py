@@ -469,6 +469,34 @@ def test_high_points_away_from_a_slot_still_make_a_texture():
     assert not detect_slots(image, PITCH).present
 
 
+def test_teeth_along_a_slot_are_a_texture_not_its_corners():
+    # a slot has 4 corners: 12 high points on its rim (a rasp strip with a slot) are teeth
+    def plate_with_teeth(x, y):
+        field = plate_with_slot(x, y, width=10.0, length=50.0)
+        for cx in np.arange(-20.0, 21.0, 8.0):
+            for cy in (-9.0, 9.0):
+                field = field + np.exp(-((x - cx) ** 2 + (y - cy) ** 2) / 8.0)
+        return field
+
+    image = render(plate_with_teeth, noise=0.01, rng=9)
+    assert len(gaps_core(prepare(image, PITCH))[1]) == 1  # the slot, as a plain contact's
+    features = extract(image, PITCH)
+    assert features.texture.maxima_count == 12
+    assert features.shape.rule == "many high points (texture)"
+    assert not features.slots.present
+    assert not detect_slots(image, PITCH).present
+
+
+@pytest.mark.parametrize(("angle", "sigma"), [(2.2, 3.5), (1.0, 5.0)])
+def test_a_slot_s_corners_under_more_smoothing(angle, sigma):
+    # a wider texture smoothing moves the corners' peaks further out from the slot
+    image = render(plate_with_slot, noise=0.01, rng=9, angle=angle, centre=(6.0, -3.0),
+                   width=10.0, length=50.0)  # fmt: skip
+    features = extract(image, PITCH, texture_sigma=sigma)
+    assert features.texture.maxima_count == 4
+    assert features.slots.count == 1
+
+
 def test_slot_running_off_the_array():
     image = render(plate_with_slot, noise=0.01, rng=9, angle=0.2, width=8.0, length=400.0)
     slot = detect_slots(image, PITCH).items[0]

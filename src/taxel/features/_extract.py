@@ -18,7 +18,7 @@ from taxel.features._image import prepare
 from taxel.features._record import record
 from taxel.features._shape import ContactShape, shape_core
 from taxel.features._surface import ContactPlane, checked_depth, plane_core
-from taxel.features._texture import Texture, texture_core
+from taxel.features._texture import TEXTURE_SIGMA, Texture, texture_core
 from taxel.features._textured import judged_gaps
 from taxel.frames import as_pose
 
@@ -228,7 +228,7 @@ def extract(
     smoothing: float = 1.0,
     baseline: float | None = None,
     point_size: float = 2.5e-3,
-    texture_sigma: float = 2.0,
+    texture_sigma: float = TEXTURE_SIGMA,
     defects: bool | None = None,
     noise: float | str | None = None,
     reference: Any = None,

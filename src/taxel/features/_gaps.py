@@ -381,7 +381,7 @@ GapsFound = tuple[list[Hole], list[Slot], np.ndarray | None]
 def gaps_core(prepared: Prepared, *, textured: bool = False) -> GapsFound:
     """Holes, slots, and the mask of the gaps they occupy (internal).
 
-    `textured`: the contact is a texture (see `_textured.is_textured`); its basins are then
+    `textured`: the contact is a texture (see `_textured.judged_gaps`); its basins are then
     holes only when they make a perforated sheet, and never slots. The mask (uint8) is
     None when no gap was found (most contacts: it is made with the first gap).
     """

@@ -311,8 +311,8 @@ def shape_core(
 ) -> ContactShape:
     """Classify a prepared image (internal core of `classify_contact`).
 
-    `textured`: `is_textured` of the contact and `high_point_count`, as the gaps were
-    found with it (computed once). `contours`: the contact's outlines (every taxel), if
+    `textured`: whether the contact is a texture, as the gaps were found
+    (`_textured.judged_gaps`: computed once). `contours`: the contact's outlines (every taxel), if
     already found; `outline_fit`: the line and circle fitted to them in taxel units, or a
     function that fits them when first called (a band's type does without). Only the
     measures a rule needs are computed; `size_m` and `lobes` are None when not measured.

@@ -6,13 +6,15 @@ A texture's basins are holes only when they make a perforated sheet, and never s
 A plate's slot can stand out as high points too: on a thin or no cover the pressure peaks
 at its sharp corners, and a synthetic plate's slot read as a texture of 3-4 high points,
 whose basins are no slots. High points on the rim of the one slot a plate shows (within a
-taxel of where it lies, grown by 3) are its corners, not asperities: the contact is then
-a texture only if 3 high points lie away from it. Not so for a hole: on the features
-benchmark's second draw, foam pressed at 186 N left one basin between its 3 high points,
-which then read as a false hole.
+taxel or two of where it lies, see `_at_rim`), up to 4 of them, are its corners, not
+asperities: the contact is then a texture only if 3 high points are not. Not so for a
+hole: on the features benchmark's second draw, foam pressed at 186 N left one basin
+between its 3 high points, which then read as a false hole.
 """
 
 from __future__ import annotations
+
+import math
 
 import cv2
 import numpy as np
@@ -32,7 +34,8 @@ _MANY_REGIONS = 3
 # or a plateau, which have none (edge, rim, plate); three separate high points need three
 # touching asperities: a texture.
 MANY_HIGH_POINTS = 3
-_AROUND = np.ones((3, 3), np.uint8)
+# A slot has 4 corners: more high points on its rim are a texture's (teeth along a slot)
+_CORNERS = 4
 
 
 def _many_regions(contact: Contact) -> bool:
@@ -51,11 +54,16 @@ def is_textured(contact: Contact, high_point_count: int) -> bool:
 
 
 def _at_rim(prepared: Prepared, explained: np.ndarray | None, sigma: float) -> int:
-    """How many high points lie on the gaps' rims (`explained`, grown by one more taxel)."""
+    """How many high points lie on the gaps' rims: `explained` grown by sigma / 2 taxels.
+
+    (The smoothing of `sigma` moves a corner's peak outwards: a synthetic slot's lay 0-1
+    taxel beyond `explained` at sigma 2, 2 at sigma 5.)
+    """
     if explained is None:
         return 0
     places = prepared.memo[("high points", sigma)]  # (x, y), kept from 3 high points on
-    rims = cv2.dilate(explained, _AROUND)
+    reach = math.ceil(sigma / 2)
+    rims = cv2.dilate(explained, np.ones((2 * reach + 1, 2 * reach + 1), np.uint8))
     return int(np.count_nonzero(rims[places[:, 1], places[:, 0]]))
 
 
@@ -66,16 +74,17 @@ def judged_gaps(
 
     `high_point_count`: `high_points` of `prepared` with this `sigma`. A contact textured
     by its high points alone (3 or more, in under 3 sizeable regions) whose gaps, looked
-    for as a plain contact's, are one slot is not a texture when fewer than 3 of its high
-    points lie away from that slot's rim (see the module notes). Such a contact's gaps are
-    looked for twice, plainly and as a texture's (`gaps_core` runs twice).
+    for as a plain contact's, are one slot is not a texture when, but for up to 4 high
+    points on that slot's rim (its corners), fewer than 3 remain (see the module notes).
+    Such a contact's gaps are looked for twice, plainly and as a texture's.
     """
     textured = is_textured(contact, high_point_count)
     if textured and not _many_regions(contact):
         plain = gaps_core(prepared, textured=False)
         holes, slots, explained = plain
         if len(slots) == 1 and not holes:
-            away = high_point_count - _at_rim(prepared, explained, sigma)
+            corners = min(_at_rim(prepared, explained, sigma), _CORNERS)
+            away = high_point_count - corners
             if away < MANY_HIGH_POINTS:
                 return False, plain
     return textured, gaps_core(prepared, textured=textured)
