@@ -225,6 +225,9 @@ def detect_slots(
     length times its widest span) and, if it reaches the array's border, it does so only
     at its ends. Length is sqrt(12) times the standard deviation along the long axis
     (exact for a rectangle); width is area over length, both at half the surrounding level.
+    A texture's basins are no slots: a contact of 3 or more sizeable regions, or with 3 or
+    more high points (`texture_measures`) besides up to 4 on the rim of its one slot, which
+    are that slot's sharp corners, as `extract` judges it.
 
     Examples
     --------
