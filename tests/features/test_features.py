@@ -452,36 +452,29 @@ def test_slot_position_direction_width_length(angle):
     assert not slot.truncated
 
 
-def test_high_points_away_from_a_slot_still_make_a_texture():
-    # the slot's 4 corners are its own; 3 bumps elsewhere on the plate are asperities
-    def plate_with_bumps(x, y):
-        field = plate_with_slot(x, y, centre=(6.0, -3.0), width=10.0, length=50.0)
-        for cx, cy in ((-40.0, 40.0), (40.0, 40.0), (0.0, -45.0)):
-            field = field + 0.3 * np.exp(-((x - cx) ** 2 + (y - cy) ** 2) / 8.0)
-        return field
+def _plate_with_bumps(x, y):
+    # 3 bumps away from the slot: asperities, not its corners
+    field = plate_with_slot(x, y, centre=(6.0, -3.0), width=10.0, length=50.0)
+    for cx, cy in ((-40.0, 40.0), (40.0, 40.0), (0.0, -45.0)):
+        field = field + 0.3 * np.exp(-((x - cx) ** 2 + (y - cy) ** 2) / 8.0)
+    return field
 
-    image = render(plate_with_bumps, noise=0.01, rng=9)
+
+def _plate_with_teeth(x, y):
+    # 12 teeth along the slot's rim: a slot has 4 corners, more are a texture's
+    field = plate_with_slot(x, y, width=10.0, length=50.0)
+    for cx in np.arange(-20.0, 21.0, 8.0):
+        for cy in (-9.0, 9.0):
+            field = field + np.exp(-((x - cx) ** 2 + (y - cy) ** 2) / 8.0)
+    return field
+
+
+@pytest.mark.parametrize(("pattern", "count"), [(_plate_with_bumps, 7), (_plate_with_teeth, 12)])
+def test_high_points_besides_a_slot_s_corners_make_a_texture(pattern, count):
+    image = render(pattern, noise=0.01, rng=9)
     assert len(gaps_core(prepare(image, PITCH))[1]) == 1  # the slot, as a plain contact's
     features = extract(image, PITCH)
-    assert features.texture.maxima_count == 7
-    assert features.shape.rule == "many high points (texture)"
-    assert not features.slots.present
-    assert not detect_slots(image, PITCH).present
-
-
-def test_teeth_along_a_slot_are_a_texture_not_its_corners():
-    # a slot has 4 corners: 12 high points on its rim (a rasp strip with a slot) are teeth
-    def plate_with_teeth(x, y):
-        field = plate_with_slot(x, y, width=10.0, length=50.0)
-        for cx in np.arange(-20.0, 21.0, 8.0):
-            for cy in (-9.0, 9.0):
-                field = field + np.exp(-((x - cx) ** 2 + (y - cy) ** 2) / 8.0)
-        return field
-
-    image = render(plate_with_teeth, noise=0.01, rng=9)
-    assert len(gaps_core(prepare(image, PITCH))[1]) == 1  # the slot, as a plain contact's
-    features = extract(image, PITCH)
-    assert features.texture.maxima_count == 12
+    assert features.texture.maxima_count == count
     assert features.shape.rule == "many high points (texture)"
     assert not features.slots.present
     assert not detect_slots(image, PITCH).present
