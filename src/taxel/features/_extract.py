@@ -260,7 +260,7 @@ def extract(
         Gaussian sigma before segmentation and edges [taxels].
     baseline : float, optional
         No-contact level [image units]; estimated as the smoothed image's minimum if omitted
-        (past the dips of dead taxels, on arrays 44 taxels wide or more: see `prepare`).
+        (a dead taxel near it read as its neighbours: see `prepare`).
     point_size : float, default 2.5e-3
         Compact contacts up to this size [m] are points, their size read at half their
         peak (see `classify_contact`).

@@ -33,7 +33,6 @@ import cv2
 import numpy as np
 
 from taxel._validation import check_finite, check_flag, check_range
-from taxel.features._blur import gaussian_blur
 from taxel.features._input import LARGEST_VALUE, as_image
 from taxel.features._lighting import background_tilt
 from taxel.features._noise import (
@@ -43,7 +42,7 @@ from taxel.features._noise import (
     taxel_noise,
 )
 from taxel.features._response import ReadBack, read_back
-from taxel.features._rest import extremes
+from taxel.features._rest import smoothed
 from taxel.features._sensor import (
     TAIL_DEPTHS,
     check_image_shape,
@@ -81,7 +80,6 @@ _RELATIVE_FLOOR = 1e-6
 _TILT_SIDE = 32
 # Remove defects when the sensing plane lies at least this many taxels under the surface.
 _DEFECT_DEPTH = 3.0
-_DEFECT_KERNEL = np.ones((3, 3), np.uint8)
 # flood fill: 8-connected, writing 1 into its mask
 _FILL_8 = 8 | (1 << 8)
 # Integer images of at most this many bits: their Laplacian residual is exact in float32.
@@ -332,15 +330,15 @@ def prepare(
     smoothing : float, default 1.0
         Sigma of the Gaussian smoothing [taxels], 0 to disable.
     baseline : float, optional
-        The no-contact level [image units]; by default the smoothed image's lowest but for
-        dead taxels' dips (`_rest`); wrong when the whole sensor is in contact. Without it, a
-        raw frame of 32 x 32 taxels or more has its lighting's tilt taken out first when the
-        tilt would move the contact's cut (`tilt`, see `taxel.features._lighting`). A
-        calibrated or tared (`reference`) image has a known no-load level, 0: when its
-        smoothed minimum stands clearly above it (11 noise sigmas: no taxel at rest), the
-        baseline is 3.5 sigmas below 0, where a background's minimum usually lies. A raw frame
-        cannot tell: give it a `reference`. Given for a calibrated image, it is the pressure
-        that carries no force: the forces count the pressure above it (an uncorrected offset).
+        The no-contact level [image units]; by default the smoothed image's lowest, dead taxels
+        read as their neighbours (`_rest`); wrong when the whole sensor is in contact. Without
+        it, a raw frame of 32 x 32 taxels or more has its lighting's tilt taken out first when
+        the tilt would move the contact's cut (`tilt`, see `taxel.features._lighting`). A
+        calibrated or tared (`reference`) image has a known no-load level, 0: when its smoothed
+        minimum stands clearly above it (11 noise sigmas: no taxel at rest), the baseline is
+        3.5 sigmas below 0, where a background's minimum usually lies. A raw frame cannot tell:
+        give it a `reference`. Given for a calibrated image, it is the pressure that carries no
+        force: the forces count the pressure above it (an uncorrected offset).
     defects : bool, optional
         Remove bright defects narrower than 3 taxels (glass scratches, hot pixels) with a
         3 x 3 grey-level opening. By default only in an uncalibrated image (a raw frame)
@@ -413,11 +411,9 @@ def prepare(
     cleaned = removes_defects(
         sensor_or_pitch, defects, calibrated=calibrated, referenced=reference is not None
     )
-    if cleaned:
-        values = cv2.morphologyEx(values, cv2.MORPH_OPEN, _DEFECT_KERNEL)
-    smooth = gaussian_blur(values, smoothing) if smoothing > 0 else values
+    # (bright defects removed, and dead taxels read as their neighbours: `_rest`)
+    values, smooth, lowest, peak, peak_at = smoothed(values, smoothing, raw_noise, defects=cleaned)
     noise = raw_noise * smoothing_gain(smoothing)
-    lowest, peak, peak_at = extremes(smooth, noise, smoothing)
     level = lowest if baseline is None else check_finite("baseline", baseline)
     if baseline is None and (calibrated or reference is not None) and lowest > K_HIGH * noise:
         # no taxel at rest: the whole array is pressed. A pressure's or a tared frame's
@@ -437,7 +433,7 @@ def prepare(
         tilt = background_tilt(smooth, low, high, level, noise, reach)
         if tilt is not None:
             values, smooth = values - tilt, smooth - tilt
-            level, peak, peak_at = extremes(smooth, noise, smoothing)
+            level, peak, _, peak_at = cv2.minMaxLoc(smooth)
             low, high = _cuts(level, peak, noise)
     contrast = peak - level
     floor = max(_RELATIVE_FLOOR * max(abs(peak), abs(level)), 1e-30)
