@@ -69,6 +69,9 @@ def _dead_near(
     r0, r1 = max(y - _LOOK - 1, 0), min(y + _LOOK + 2, rows)
     c0, c1 = max(x - _LOOK - 1, 0), min(x + _LOOK + 2, cols)
     patch = values[r0:r1, c0:c1]
+    lowest, highest = cv2.minMaxLoc(patch)[:2]
+    if lowest >= highest - limit:
+        return None  # (the usual case: no taxel of the patch so far below another)
     # a dead taxel lies below its highest neighbour too, which few taxels do by as much
     maybe = patch < cv2.dilate(patch, _NEIGHBOURS) - np.float32(limit)
     # only the taxels whose neighbours all lie in the patch, or beyond the array
