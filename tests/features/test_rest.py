@@ -3,7 +3,7 @@
 import cv2
 import numpy as np
 import pytest
-from synthetic import band, cone, render
+from synthetic import _edge_peak, band, cone, render
 
 from taxel.features import extract, prepare
 from taxel.features._rest import smoothed
@@ -40,6 +40,20 @@ def test_dead_taxels_are_read_as_their_neighbours_and_rest_taxels_are_not():
     assert level < 40.0
     # with no noise to measure against, none is found: the dip sets the rest level
     assert smoothed(given, 1.0, 0.0, defects=False)[2] < clean[2] - 3.0
+
+
+def test_a_face_s_corner_at_rest_is_no_dead_taxel():
+    # a face over a 64 x 64 array but for the 10 taxels i + j < 4 of a corner: under the
+    # cover's blur the corner taxel rises through its neighbours to the face, which is no
+    # spike (a first version read it as dead, one taxel after another, and halved the face)
+    def face(x, y):
+        across = (x + y + 60.0) / np.sqrt(2)
+        return np.where(across > 0, _edge_peak(across, 40.0) * 0.3, 0)
+
+    image = render(face, (64, 64), noise=0.005, rng=1)
+    features = extract(image, PITCH)
+    assert prepare(image, PITCH).mask.sum() >= 4090
+    assert features.contact_type == "surface"
 
 
 @pytest.mark.parametrize("place", PLACES)
