@@ -87,16 +87,16 @@ def _dead_near(
     found: tuple[list[int], list[int], list[float]] = ([], [], [])
     for row, col in zip(*np.nonzero(maybe), strict=True):
         r, c = row + r0, col + c0
+        value = float(values[r, c])
         around = values[max(r - 1, 0) : r + 2, max(c - 1, 0) : c + 2].ravel().tolist()
-        around.remove(float(values[r, c]))  # (the taxel itself, once)
+        around.remove(value)  # (the taxel itself, once)
         middle = float(np.median(around))
-        lowest, spread = min(around), max(around) - min(around)
+        floor, spread = min(around), max(around) - min(around)
         # alone so low, and a spike: a patch of taxels at rest among pressed ones has low
         # neighbours, and the corner of one under a cover rises through its neighbours, which
         # then spread further than noise does and than it drops below the lowest of them
-        value = float(values[r, c])
-        spike = spread <= limit or lowest - value > spread
-        if value < middle - limit and lowest >= middle - limit and spike:
+        spike = spread <= limit or floor - value > spread
+        if value < middle - limit and floor >= middle - limit and spike:
             found[0].append(int(r))
             found[1].append(int(c))
             found[2].append(middle)
