@@ -1040,6 +1040,19 @@ def test_the_hole_and_slot_functions_agree_with_extract():
     assert features.holes.diameter_test  # (the notched square: its walk finds a "hole")
 
 
+@pytest.mark.parametrize("offset", [(-3.0, -1.2), (-2.3, 1.5), (-1.6, -1.2)])
+def test_diameter_test_answers_the_same_on_a_mirrored_image(offset):
+    # the walk's samples lie symmetrically about the fitted centre, one of them on it: the
+    # samples once started 0.4 taxel past it, so the taxel read as the centre differed
+    # between an image and its mirror (these offsets: in the slot in one, not the other)
+    image = render(plate_with_slot, (64, 64), centre=offset, width=5.0, length=24.0)
+    answers = {
+        extract(np.ascontiguousarray(view), 1e-3).holes.diameter_test
+        for view in (image, image[::-1], image[:, ::-1], image.T)
+    }
+    assert len(answers) == 1
+
+
 def test_diameter_test_skips_only_contacts_it_cannot_pass(monkeypatch):
     # the early exit (the fitted centre well outside the contact's hull) must give the
     # walk's own answer: compare with the walk forced on every image

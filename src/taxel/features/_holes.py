@@ -89,8 +89,11 @@ def diameter_test(
         inside = cv2.pointPolygonTest(hull, (float(centre_c), float(centre_r)), True)
         if inside < -_CENTRE_OFF_HULL:
             return False
-    # one taxel per step: the contact's walls are at least 2 taxels thick after smoothing
-    steps = np.arange(-_DIAMETER_REACH * radius, _DIAMETER_REACH * radius, 1.0)
+    # one taxel per step: the contact's walls are at least 2 taxels thick after smoothing;
+    # the steps run symmetrically about the centre, which is one of them, so a mirrored
+    # image gives the mirrored samples
+    reach = math.floor(_DIAMETER_REACH * radius)
+    steps = np.arange(-reach, reach + 1, dtype=float)
     # the samples' columns (first 16 rows) and rows (last 16), rounded to taxels
     at = _DIRECTIONS * steps
     at[:_DIAMETERS] += centre_c
