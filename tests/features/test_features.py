@@ -114,7 +114,14 @@ def test_edge_score_tells_edges_from_surfaces(pattern, parameters, edge):
 @pytest.mark.parametrize("angle", [0.0, 0.7, 1.9, 2.6])
 @pytest.mark.parametrize(
     ("expected", "pattern", "extra"),
-    [("line", band, {}), ("corner", corner, {}), ("line", half_plane, {})],
+    [
+        ("line", band, {}),
+        ("corner", corner, {}),
+        # an acute corner: its vertex lies farther from one arm's far end than the other
+        # arm's end does, and was taken for an end (a face with a curved outline)
+        ("corner", corner, {"opening": math.radians(40.0)}),
+        ("line", half_plane, {}),
+    ],
 )
 def test_contact_type_invariant_under_rotation_and_translation(expected, pattern, extra, angle):
     rng = np.random.default_rng(int(angle * 10))

@@ -42,6 +42,13 @@ _MIN_VERTEX_OFFSET = 2.0
 # The corner score ramps up as the arms turn from 15 to 35 degrees off a straight line.
 _IN_LINE = math.radians(15.0)
 _BENT = math.radians(35.0)
+# Arms under 60 degrees apart can be misread (the vertex taken for a far end, see
+# `two_arms`). The outline piece's own ends are tried as the far ends instead, and kept
+# for arms under 70 degrees apart whose worst spread is a third of the misread ones' or
+# less: 0.19-0.30 of it on wedges opening 30-55 degrees on 32-96 taxel arrays at 0-3 %
+# noise, 0.39-0.86 on the 16 x 16 features benchmark's rough faces (foam, screens, a slot)
+_ACUTE = math.radians(70.0)
+_MISREAD = 3.0
 # A piece that passes as straight is a circle arc when it bows by >= 2 taxels over its
 # length (the arc's sagitta, as for a band in `taxel.features._shape`) and a circle fits it
 # at least twice as closely as the line: a round face's rim (a washer, a plate's hole
@@ -150,14 +157,30 @@ def two_arms(x: np.ndarray, y: np.ndarray, points: Centred | None = None) -> tup
     """Fit two straight arms meeting at a vertex: (worst arm spread, interior angle).
 
     The arms' far ends are the point farthest from the centroid and the point farthest
-    from that one; the vertex is the point farthest from the chord between them.
-    `points`: (x, y) as `centred` gives them, if already made.
+    from that one; the vertex is the point farthest from the chord between them. Under
+    60 degrees the vertex lies farther from one far end than the other far end does, and
+    is taken for an end: where `x`, `y` run along an open outline piece (as `free_chains`
+    gives them), its own two ends are tried as the far ends too, and kept when they give
+    arms under 70 degrees apart that fit three times better or more. `points`: (x, y) as
+    `centred` gives them, if already made.
     """
     terms = (points or centred(x, y))[3]
     # plain floats for the scalar arithmetic (NumPy scalars cost several times more)
     far_a = int((terms[0] ** 2 + terms[1] ** 2).argmax())
     ax, ay = x[far_a].item(), y[far_a].item()
     far_b = int(((x - ax) ** 2 + (y - ay) ** 2).argmax())
+    arms = _arms_between(x, y, far_a, far_b)
+    last = x.size - 1
+    if {far_a, far_b} != {0, last} and arms[0] > _SPREAD_TAXELS:
+        ends = _arms_between(x, y, 0, last)
+        if ends[1] < _ACUTE and ends[0] <= arms[0] / _MISREAD:
+            return ends
+    return arms
+
+
+def _arms_between(x: np.ndarray, y: np.ndarray, far_a: int, far_b: int) -> tuple[float, float]:
+    """`two_arms` with the arms' far ends at the points `far_a` and `far_b`."""
+    ax, ay = x[far_a].item(), y[far_a].item()
     bx, by = x[far_b].item(), y[far_b].item()
     chord = math.hypot(bx - ax, by - ay)
     if chord == 0:
