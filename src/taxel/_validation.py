@@ -140,7 +140,12 @@ def as_finite_array(name: str, value: Any, *, ndim: int | None = None) -> np.nda
         raise TypeError(f"`{name}` must be numeric, got text: {_short(value)}")
     try:
         array = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError) as error:
+        if "inhomogeneous" in str(error):  # NumPy's word for lists of unequal lengths
+            raise ValueError(
+                f"`{name}` must be a regular array: its rows differ in length, got "
+                f"{_short(value)}"
+            ) from None
         raise TypeError(f"`{name}` must be numeric, got {_short(value)}") from None
     if ndim is not None and array.ndim != ndim:
         raise ValueError(f"`{name}` must be {ndim}-D, got shape {array.shape}")

@@ -93,6 +93,8 @@ def test_known_noise_finds_a_texture_that_covers_the_array(tmp_path, capsys):
         ("badpose", ["--pitch", "1e-3", "--pose", "POSE"], "not valid JSON"),
         ("frame", ["--pitch", "1e-3", "--noise", "-2"], "argument --noise: must be > 0, got -2"),
         ("frame", ["--pitch", "1e-3", "--noise", "nan"], "argument --noise: must be > 0, got nan"),
+        # beyond single precision (NumPy's overflow warnings were printed, and a result)
+        ("frame", ["--pitch", "1e-3", "--noise", "1e40"], "--noise must lie in (0, 1e+15]"),
         (
             "small",
             ["--pitch", "5e-3"],
@@ -192,12 +194,21 @@ def test_a_failed_figure_keeps_the_old_one(tmp_path, capsys, washer, full_disk_s
             "`rotation` must have a proper rotation block (orthonormal, det +1)",
         ),
         ("[" + " " * 200_000 + "]", "more than 100 kB: not a pose file"),
+        # JSON's true read as 1 (a metre's translation), a ragged list, bytes of no text
+        ("[[1, 0, 0, true], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]", "`pose` must be numeric"),
+        (
+            '{"matrix": [[true, false, false, false], [false, true, false, false], '
+            "[false, false, true, false], [false, false, false, true]]}",
+            "`pose` must be numeric, got a boolean in it",
+        ),
+        ("[[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0]]", "`pose` must be a regular"),
+        (b"\xff\xfe[", "not a text file (cannot decode it as UTF-8)"),
     ],
 )
 def test_poses_that_are_no_poses_are_one_line(tmp_path, capsys, washer, content, problem):
     frame, pose = tmp_path / "frame.npy", tmp_path / "pose.json"
     np.save(frame, washer)
-    pose.write_text(content)
+    pose.write_bytes(content) if isinstance(content, bytes) else pose.write_text(content)
     assert main(["features", str(frame), "--pitch", "2.5e-4", "--pose", str(pose)]) == 2
     error = capsys.readouterr().err
     assert error.startswith(f"taxel features: error: --pose {pose}: {problem}")
@@ -223,14 +234,25 @@ def test_the_pitch_is_checked_as_the_flag(tmp_path, capsys, washer, pitch, messa
         ("archive", [], "holds 2 arrays (a, b); choose one with --key"),
         ("mask", [], "the frame holds bool data, not real numbers"),
         ("huge", [], "values up to 1e+300, beyond the 1e+15 the features handle"),
+        # the digits that tell it from the limit, which 3 would round to it
+        ("just over", [], "values up to 1.0000001e+15, beyond the 1e+15"),
+        ("time", [], "has a time column: a sequence of frames, where one frame is read"),
     ],
 )
 def test_frames_the_features_cannot_take(tmp_path, capsys, washer, setup, extra, message):
-    path = tmp_path / ("frame.npz" if setup == "archive" else "frame.npy")
+    suffix = {"archive": ".npz", "time": ".csv"}.get(setup, ".npy")
+    path = tmp_path / f"frame{suffix}"
     if setup == "archive":
         np.savez(path, a=washer, b=washer)
+    elif setup == "time":
+        path.write_text("timestamp, a, b\n0.0, 1, 2\n")
     else:
-        frame = {"npy": washer, "mask": washer > 100, "huge": washer * 1e300 / washer.max()}
+        frame = {
+            "npy": washer,
+            "mask": washer > 100,
+            "huge": washer * 1e300 / washer.max(),
+            "just over": washer * 1.0000001e15 / washer.max(),
+        }
         np.save(path, frame[setup])
     assert main(["features", str(path), "--pitch", "2.5e-4", *extra]) == 2
     error = capsys.readouterr().err
@@ -386,13 +408,17 @@ def test_a_rotation_vector_longer_than_a_double_holds_is_refused(
     assert ("'rotvec' has length" in err) == (code == 2)
 
 
-def test_the_table_shows_huge_positions_in_exponent_notation(tmp_path, capsys, washer):
+@pytest.mark.parametrize(("metres", "shown"), [(1e300, "1.000e+303"), (1e307, "1.000e+310")])
+def test_the_table_shows_huge_positions_in_exponent_notation(
+    tmp_path, capsys, washer, metres, shown
+):
+    # (1e307 m is 1e310 mm, beyond a double: it was shown as inf)
     frame, pose = tmp_path / "frame.npy", tmp_path / "pose.json"
     np.save(frame, washer)
-    pose.write_text(json.dumps({"translation": [0, 0, 1e300], "rotvec": [0, 0, 0]}))
+    pose.write_text(json.dumps({"translation": [0, 0, metres], "rotvec": [0, 0, 0]}))
     assert main(["features", str(frame), "--pitch", "2.5e-4", "--pose", str(pose)]) == 0
     line = next(row for row in capsys.readouterr().out.splitlines() if "base [mm]" in row)
-    assert line.endswith(", 1.000e+303)") and len(line) < 80
+    assert line.endswith(f", {shown})") and len(line) < 80
 
 
 @pytest.mark.parametrize("suffix", [".npy", ".png"])
@@ -442,6 +468,11 @@ def test_reference_frame_tares_a_frame_at_rest(tmp_path, capsys):
         (np.zeros((64, 64)), "a 64 x 64 frame, but"),
         (np.full((128, 128), np.inf), "--reference: "),
         (None, "--reference REFERENCE: no such file"),
+        # int64's least, whose absolute value overflows to itself: it slipped past the check
+        (
+            np.full((128, 128), np.iinfo(np.int64).min),
+            "--reference REFERENCE: values up to 9.22e+18, beyond the 1e+15",
+        ),
     ],
 )
 def test_reference_errors_are_one_line(tmp_path, capsys, content, message):
@@ -561,3 +592,10 @@ def test_a_depth_map_gives_the_contact_plane_s_normal(tmp_path, capsys):
     assert main([*args, "--depth", str(tmp_path / "small.npy")]) == 2
     error = capsys.readouterr().err
     assert error.count("\n") == 1 and f"--depth {tmp_path / 'small.npy'}: a 8 x 8 frame" in error
+    # a depth out of range is named by the flag and the file, not by the library's parameter
+    np.save(tmp_path / "deep.npy", np.full((64, 64), 5.0))
+    assert main([*args, "--depth", str(tmp_path / "deep.npy")]) == 2
+    assert capsys.readouterr().err == (
+        f"taxel features: error: --depth {tmp_path / 'deep.npy'} is an indentation in metres "
+        "and must lie within +-1 m, got 5\n"
+    )

@@ -900,8 +900,11 @@ def test_bad_options():
         extract(image, 1e-3, depth=np.eye(8) * -2.0)
     with pytest.raises(ValueError, match=r"within \+-1 m, got 5"):  # (the same check)
         contact_plane(image, 1e-3, depth=np.full((8, 8), 5.0))
-    with pytest.raises(ValueError, match="`noise` must be > 0, got -1"):
+    with pytest.raises(ValueError, match=r"`noise` must lie in \(0, 1e\+15\], got -1"):
         extract(image, 1e-3, noise=-1.0)
+    # beyond single precision: NumPy's overflow warnings, and a result
+    with pytest.raises(ValueError, match=r"`noise` must lie in \(0, 1e\+15\], got 1e\+40"):
+        extract(image, 1e-3, noise=1e40)
 
 
 def test_defects_narrower_than_the_cover_blur_are_removed():

@@ -87,6 +87,24 @@ def test_bad_pose(value, match):
         as_pose(value)
 
 
+@pytest.mark.parametrize(
+    "value",
+    [
+        np.eye(4, dtype=bool),  # a mask, which other inputs read as 0 and 1
+        [[1, 0, 0, True], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]],  # True: a metre
+        (np.eye(4)[0], (0, 1, 0, 0), [0, 0, 1, np.False_], [0, 0, 0, 1]),
+    ],
+)
+def test_a_pose_holding_booleans_is_refused(value):
+    with pytest.raises(TypeError, match="`pose` must be numeric, got a boolean in it"):
+        as_pose(value)
+
+
+def test_a_ragged_pose_is_named_so():
+    with pytest.raises(ValueError, match="`pose` must be a regular array: its rows differ"):
+        as_pose([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 1]])
+
+
 def test_bad_arguments():
     with pytest.raises(ValueError, match="translation"):
         make_pose(None, [1.0, 2.0])

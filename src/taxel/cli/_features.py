@@ -6,6 +6,7 @@ import argparse
 import json
 import math
 import sys
+from decimal import Decimal
 from pathlib import Path
 from typing import Any
 
@@ -24,6 +25,28 @@ _LARGEST_VALUE = 1e15
 _LARGEST_FIXED = 1e9
 
 
+def _for_the_command(message: str) -> str:
+    """`read_frame`'s message, its advice to Python users put for the command line."""
+    return message.replace(
+        "; read it with `read_sequence`", ": a sequence of frames, where one frame is read"
+    )
+
+
+def _check_magnitude(where: str, values: np.ndarray, advice: str) -> None:
+    """Refuse values beyond `_LARGEST_VALUE`, the largest shown with the digits that tell it.
+
+    The extremes are read as doubles first: the absolute value of int64's least overflows.
+    """
+    largest = max(abs(float(values.min())), abs(float(values.max())))
+    if largest > _LARGEST_VALUE:
+        # as few digits as tell the value from the limit (1.0000001e15 is no "1e+15")
+        digits = next(n for n in range(3, 18) if float(f"{largest:.{n}g}") > _LARGEST_VALUE)
+        raise ValueError(
+            f"{where}: values up to {largest:.{digits}g}, beyond the {_LARGEST_VALUE:.0e} "
+            f"the features handle (they compute in single precision){advice}"
+        )
+
+
 def _format(value: Any, scale: float = 1.0, digits: int = 3) -> str:
     if value is None:
         return "-"
@@ -32,6 +55,8 @@ def _format(value: Any, scale: float = 1.0, digits: int = 3) -> str:
     if isinstance(value, float) and not math.isfinite(value):
         return "-"
     shown = value * scale
+    if not math.isfinite(shown):  # a finite value the scale takes past a double's range
+        return f"{Decimal(value) * Decimal(scale):.{digits}e}"
     if abs(shown) >= _LARGEST_FIXED:
         return f"{shown:.{digits}e}"
     text = f"{shown:.{digits}f}"
@@ -178,14 +203,10 @@ def _load_map(
             values = read_frame(path, as_stored=True)
         except ValueError as error:  # (--key chooses FILE's array, not this one's)
             what = f"{flag} of one {'frame' if flag == '--reference' else 'map'}"
-            message = str(error).replace("; choose one with `key`", f"; give a {what}")
+            message = _for_the_command(str(error))
+            message = message.replace("; choose one with `key`", f"; give a {what}")
             raise ValueError(f"{flag}: {message}") from None
-    largest = float(np.abs(values).max())
-    if largest > _LARGEST_VALUE:
-        raise ValueError(
-            f"{flag} {path}: values up to {largest:.3g}, beyond the "
-            f"{_LARGEST_VALUE:.0e} the features handle (they compute in single precision)"
-        )
+    _check_magnitude(f"{flag} {path}", values, "")
     if values.shape != shape:
         raise ValueError(
             f"{flag} {path}: a {' x '.join(map(str, values.shape))} "
@@ -274,7 +295,7 @@ def _run(arguments: argparse.Namespace) -> int:
     try:
         stored = read_frame(arguments.file, key=arguments.key, as_stored=True)
     except ValueError as error:  # read_frame names its parameter; here it is the flag
-        raise ValueError(str(error).replace("`key`", "--key")) from None
+        raise ValueError(_for_the_command(str(error)).replace("`key`", "--key")) from None
     if arguments.calibrated and np.issubdtype(stored.dtype, np.integer):
         # as `taxel reconstruct` judges its FRAME: integers are an output's codes, not Pa
         raise ValueError(
@@ -283,12 +304,7 @@ def _run(arguments: argparse.Namespace) -> int:
             "FRAME --calibration CAL.npz` makes one)"
         )
     image = np.asarray(stored, dtype=np.float64)  # (as read_frame gives it)
-    largest = float(np.abs(image).max())
-    if largest > _LARGEST_VALUE:
-        raise ValueError(
-            f"{arguments.file}: values up to {largest:.3g}, beyond the {_LARGEST_VALUE:.0e} "
-            "the features handle (they compute in single precision); rescale the image"
-        )
+    _check_magnitude(arguments.file, image, "; rescale the image")
     shape = getattr(pitch, "shape", None)
     if shape is not None and image.shape != tuple(shape):
         raise ValueError(
@@ -323,6 +339,8 @@ def _run(arguments: argparse.Namespace) -> int:
     except ValueError as error:  # ("`image` must be at least 3x3 taxels"): the file is named
         message = str(error).replace("`image`", f"{arguments.file}: the image")
         message = message.replace("`noise`", "--noise").replace("a sensor description", "--sensor")
+        for flag in ("depth", "reference"):  # (their files are named too)
+            message = message.replace(f"`{flag}`", f"--{flag} {getattr(arguments, flag)}")
         raise ValueError(message) from None
     _warn_if_defects_erased(arguments, features, given, pitch, preparation)
     _warn_if_pressed_all_over(arguments, features, image, pitch)

@@ -129,8 +129,12 @@ def _read_pose(path: Path) -> np.ndarray:
     if len(content) > _LARGEST_FILE:
         raise ValueError(f"more than {_LARGEST_FILE // 1000} kB: not a pose file")
     try:
+        text = content.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        raise ValueError("not a text file (cannot decode it as UTF-8)") from None
+    try:
         data = json.loads(
-            content.decode("utf-8-sig"),
+            text,
             object_pairs_hook=_unique_keys,
             parse_float=_finite,
             parse_int=_finite_int,

@@ -14,7 +14,8 @@ from typing import Any
 import cv2
 import numpy as np
 
-from taxel._validation import check_positive
+from taxel._validation import check_range
+from taxel.features._input import LARGEST_VALUE
 from taxel.features._sensor import sensor_noise
 
 __all__ = [
@@ -153,4 +154,5 @@ def taxel_noise(
                 f"taxel.sensor.TactileSensor), got {type(sensor_or_pitch).__name__}"
             )
         return sensor_noise(sensor_or_pitch)
-    return check_positive("noise", noise)
+    # (as the image's values: beyond, its squares overflow single precision)
+    return check_range("noise", noise, 0.0, LARGEST_VALUE, low_inclusive=False)

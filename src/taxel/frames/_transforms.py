@@ -70,6 +70,8 @@ def as_pose(value: Any, *, name: str = "pose") -> np.ndarray:
     ...
     ValueError: `pose` must have last row [0, 0, 0, 1], got [0.0, 0.0, 0.0, 2.0]
     """
+    if _holds_bool(value):  # (a mask is an array of booleans; no pose holds one)
+        raise TypeError(f"`{name}` must be numeric, got a boolean in it")
     pose = as_finite_array(name, value, ndim=2)
     if pose.shape != (4, 4):
         raise ValueError(f"`{name}` must have shape (4, 4), got {pose.shape}")
@@ -84,6 +86,13 @@ def as_pose(value: Any, *, name: str = "pose") -> np.ndarray:
             f"got max |R^T R - I| = {error:.3g} and det = {np.linalg.det(rotation):.3g}"
         )
     return pose
+
+
+def _holds_bool(value: Any) -> bool:
+    """Whether `value` is an array of booleans, or a list or tuple with one at any depth."""
+    if isinstance(value, list | tuple):
+        return any(map(_holds_bool, value))
+    return isinstance(value, bool | np.bool_) or getattr(value, "dtype", None) == np.bool_
 
 
 def _is_rotation(value: Any) -> bool:
