@@ -411,7 +411,8 @@ def register(commands: Any) -> None:
         help="remove (or, with --no-defects, keep) bright defects narrower than 3 taxels, "
         "such as an FTIR sensor's glass scratches and hot pixels, before finding the contact. "
         "By default they are removed from a raw frame of a sensor whose cover is 3 or more "
-        "taxels deep (--sensor vhdta128) and kept otherwise: never removed from a --calibrated "
+        "taxels deep (--sensor vhdta128 or photoelastic64) and kept otherwise: never removed "
+        "from a --calibrated "
         "image, whose calibration has removed the sensor's fixed defects, and which as a "
         "pressure map from `taxel reconstruct` can be as sparse as the load, nor when a "
         "--reference is subtracted",
@@ -428,7 +429,8 @@ def register(commands: Any) -> None:
         metavar="FILE",
         help="the cover's indentation at each taxel [m], positive into the cover, from a "
         "sensor that measures displacement or depth (an optical one): it gives the contact "
-        "plane's normal (JSON 'normal', 'tilt_rad') and the contact's depth",
+        "plane's normal (JSON 'normal', 'tilt_rad') and the contact's depth (JSON "
+        "'position_sensor_m', its z; in the table, through the base frame's z given --pose)",
     )
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
     parser.add_argument("--figure", metavar="PNG", help="also draw the features to this file")
