@@ -42,11 +42,12 @@ _MIN_VERTEX_OFFSET = 2.0
 # The corner score ramps up as the arms turn from 15 to 35 degrees off a straight line.
 _IN_LINE = math.radians(15.0)
 _BENT = math.radians(35.0)
-# Arms under 60 degrees apart can be misread (the vertex taken for a far end, see
-# `two_arms`). The outline piece's own ends are tried as the far ends instead, and kept
-# for arms under 70 degrees apart whose worst spread is a third of the misread ones' or
-# less: 0.19-0.30 of it on wedges opening 30-55 degrees on 32-96 taxel arrays at 0-3 %
-# noise, 0.39-0.86 on the 16 x 16 features benchmark's rough faces (foam, screens, a slot)
+# Arms under 60 degrees apart can be misread (the vertex taken for a far end, and an end
+# of the outline piece for the vertex, see `two_arms`). The piece's own ends are then
+# tried as the far ends, and kept for arms under 70 degrees apart whose worst spread is a
+# third of the misread ones' or less: 0.19-0.30 of it on wedges opening 30-55 degrees on
+# 32-96 taxel arrays at 0-3 % noise, 0.30-0.86 on rough faces (foam, screens, a slot) of
+# the 16 x 16 features benchmark, which only one of them (0.42) misreads so
 _ACUTE = math.radians(70.0)
 _MISREAD = 3.0
 # A piece that passes as straight is a circle arc when it bows by >= 2 taxels over its
@@ -159,36 +160,45 @@ def two_arms(x: np.ndarray, y: np.ndarray, points: Centred | None = None) -> tup
     The arms' far ends are the point farthest from the centroid and the point farthest
     from that one; the vertex is the point farthest from the chord between them. Under
     60 degrees the vertex lies farther from one far end than the other far end does, and
-    is taken for an end: where `x`, `y` run along an open outline piece (as `free_chains`
-    gives them), its own two ends are tried as the far ends too, and kept when they give
-    arms under 70 degrees apart that fit three times better or more. `points`: (x, y) as
-    `centred` gives them, if already made.
+    is taken for an end, and an end of the piece for the vertex: where `x`, `y` run along
+    an open outline piece (as `free_chains` gives them) and that happens, the piece's own
+    ends are tried as the far ends, and kept when they give arms under 70 degrees apart
+    that fit three times better or more. `points`: (x, y) as `centred` gives them, if
+    already made.
     """
     terms = (points or centred(x, y))[3]
     # plain floats for the scalar arithmetic (NumPy scalars cost several times more)
     far_a = int((terms[0] ** 2 + terms[1] ** 2).argmax())
     ax, ay = x[far_a].item(), y[far_a].item()
     far_b = int(((x - ax) ** 2 + (y - ay) ** 2).argmax())
-    arms = _arms_between(x, y, far_a, far_b)
+    spread, angle, vertex = _arms_between(x, y, far_a, far_b)
     last = x.size - 1
-    if {far_a, far_b} != {0, last} and arms[0] > _SPREAD_TAXELS:
+    # misread: the vertex found is an end of the piece, and its other end a far end
+    ends_misread = vertex in (0, last) and {0, last} <= {far_a, far_b, vertex}
+    if ends_misread and spread > _SPREAD_TAXELS:
         ends = _arms_between(x, y, 0, last)
-        if ends[1] < _ACUTE and ends[0] <= arms[0] / _MISREAD:
-            return ends
-    return arms
+        if ends[1] < _ACUTE and ends[0] <= spread / _MISREAD:
+            return ends[:2]
+    return spread, angle
 
 
-def _arms_between(x: np.ndarray, y: np.ndarray, far_a: int, far_b: int) -> tuple[float, float]:
-    """`two_arms` with the arms' far ends at the points `far_a` and `far_b`."""
+def _arms_between(
+    x: np.ndarray, y: np.ndarray, far_a: int, far_b: int
+) -> tuple[float, float, int | None]:
+    """`two_arms` with the arms' far ends at the points `far_a` and `far_b`, and the vertex.
+
+    The vertex is the index of the point taken for it (also where an arm then holds too
+    few points: no arms, an infinite spread), None where no point lies off the chord.
+    """
     ax, ay = x[far_a].item(), y[far_a].item()
     bx, by = x[far_b].item(), y[far_b].item()
     chord = math.hypot(bx - ax, by - ay)
     if chord == 0:
-        return math.inf, math.pi
+        return math.inf, math.pi, None
     off = np.abs((bx - ax) * (ay - y) - (ax - x) * (by - ay)) / chord
     vertex = int(off.argmax())
     if off[vertex] < _MIN_VERTEX_OFFSET:
-        return math.inf, math.pi
+        return math.inf, math.pi, None
     vx, vy = x[vertex].item(), y[vertex].item()
     # each point joins the arm whose segment it lies nearer to: both arms at once, a row
     # each (the same products and quotients, element by element, as one arm at a time)
@@ -207,13 +217,13 @@ def _arms_between(x: np.ndarray, y: np.ndarray, far_a: int, far_b: int) -> tuple
     count = int(np.count_nonzero(first))
     smaller = min(count, first.size - count)
     if smaller < _MIN_ARM * x.size or smaller < 3:
-        return math.inf, math.pi
+        return math.inf, math.pi, vertex
     other = ~first
     worst = max(_line_spread(x[first], y[first])[0], _line_spread(x[other], y[other])[0])
     arm_a = math.atan2(ay - vy, ax - vx)
     arm_b = math.atan2(by - vy, bx - vx)
     angle = abs((arm_a - arm_b + math.pi) % (2 * math.pi) - math.pi)
-    return worst, angle
+    return worst, angle, vertex
 
 
 def corner_score(best_single: float, arms: tuple[float, float]) -> float:
