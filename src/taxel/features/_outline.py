@@ -47,7 +47,9 @@ _BENT = math.radians(35.0)
 # tried as the far ends, and kept for arms under 70 degrees apart whose worst spread is a
 # third of the misread ones' or less: 0.19-0.30 of it on wedges opening 30-55 degrees on
 # 32-96 taxel arrays at 0-3 % noise, 0.30-0.86 on rough faces (foam, screens, a slot) of
-# the 16 x 16 features benchmark, which only one of them (0.42) misreads so
+# the 16 x 16 features benchmark, which only one of them (0.42) misreads so. A band's end
+# (a bar's, a finger's) is misread so too, its sides taken for the arms: their halves away
+# from the vertex run within 4-7 degrees of parallel (32 x 32 arrays), a wedge's 21-60
 _ACUTE = math.radians(70.0)
 _MISREAD = 3.0
 # A piece that passes as straight is a circle arc when it bows by >= 2 taxels over its
@@ -163,42 +165,47 @@ def two_arms(x: np.ndarray, y: np.ndarray, points: Centred | None = None) -> tup
     is taken for an end, and an end of the piece for the vertex: where `x`, `y` run along
     an open outline piece (as `free_chains` gives them) and that happens, the piece's own
     ends are tried as the far ends, and kept when they give arms under 70 degrees apart
-    that fit three times better or more. `points`: (x, y) as `centred` gives them, if
-    already made.
+    that fit three times better or more and whose halves away from the vertex are no
+    band's parallel sides (over 15 degrees apart). `points`: (x, y) as `centred` gives
+    them, if already made.
     """
     terms = (points or centred(x, y))[3]
     # plain floats for the scalar arithmetic (NumPy scalars cost several times more)
     far_a = int((terms[0] ** 2 + terms[1] ** 2).argmax())
     ax, ay = x[far_a].item(), y[far_a].item()
     far_b = int(((x - ax) ** 2 + (y - ay) ** 2).argmax())
-    spread, angle, vertex = _arms_between(x, y, far_a, far_b)
+    spread, angle, vertex, _ = _arms_between(x, y, far_a, far_b)
     last = x.size - 1
     # misread: the vertex found is an end of the piece, and its other end a far end
     ends_misread = vertex in (0, last) and {0, last} <= {far_a, far_b, vertex}
     if ends_misread and spread > _SPREAD_TAXELS:
-        ends = _arms_between(x, y, 0, last)
-        if ends[1] < _ACUTE and ends[0] <= spread / _MISREAD:
+        ends = _arms_between(x, y, 0, last, far_halves=True)
+        # (a band's end reads so too: its sides, the arms' far halves, run parallel)
+        if ends[1] < _ACUTE and ends[0] <= spread / _MISREAD and ends[3] > _IN_LINE:
             return ends[:2]
     return spread, angle
 
 
 def _arms_between(
-    x: np.ndarray, y: np.ndarray, far_a: int, far_b: int
-) -> tuple[float, float, int | None]:
-    """`two_arms` with the arms' far ends at the points `far_a` and `far_b`, and the vertex.
+    x: np.ndarray, y: np.ndarray, far_a: int, far_b: int, *, far_halves: bool = False
+) -> tuple[float, float, int | None, float]:
+    """`two_arms` with the arms' far ends at the points `far_a` and `far_b`, and more.
 
-    The vertex is the index of the point taken for it (also where an arm then holds too
-    few points: no arms, an infinite spread), None where no point lies off the chord.
+    Returns the worst arm spread, the interior angle, the vertex and, with `far_halves`,
+    the angle [rad, 0 to pi / 2] between the lines through the arms' halves away from the
+    vertex (0 where either holds under 3 points; NaN without `far_halves`). The vertex is
+    the index of the point taken for it (also where an arm then holds too few points: no
+    arms, an infinite spread), None where no point lies off the chord.
     """
     ax, ay = x[far_a].item(), y[far_a].item()
     bx, by = x[far_b].item(), y[far_b].item()
     chord = math.hypot(bx - ax, by - ay)
     if chord == 0:
-        return math.inf, math.pi, None
+        return math.inf, math.pi, None, 0.0
     off = np.abs((bx - ax) * (ay - y) - (ax - x) * (by - ay)) / chord
     vertex = int(off.argmax())
     if off[vertex] < _MIN_VERTEX_OFFSET:
-        return math.inf, math.pi, None
+        return math.inf, math.pi, None, 0.0
     vx, vy = x[vertex].item(), y[vertex].item()
     # each point joins the arm whose segment it lies nearer to: both arms at once, a row
     # each (the same products and quotients, element by element, as one arm at a time)
@@ -217,13 +224,23 @@ def _arms_between(
     count = int(np.count_nonzero(first))
     smaller = min(count, first.size - count)
     if smaller < _MIN_ARM * x.size or smaller < 3:
-        return math.inf, math.pi, vertex
+        return math.inf, math.pi, vertex, 0.0
     other = ~first
     worst = max(_line_spread(x[first], y[first])[0], _line_spread(x[other], y[other])[0])
     arm_a = math.atan2(ay - vy, ax - vx)
     arm_b = math.atan2(by - vy, bx - vx)
     angle = abs((arm_a - arm_b + math.pi) % (2 * math.pi) - math.pi)
-    return worst, angle, vertex
+    if not far_halves:
+        return worst, angle, vertex, math.nan
+    # the lines through the far halves of the arms (away from the vertex), and the angle
+    # between them (undirected: 0 to 90 degrees)
+    far_a = first & (t[0] > 0.5)
+    far_b = other & (t[1] > 0.5)
+    if np.count_nonzero(far_a) < 3 or np.count_nonzero(far_b) < 3:
+        return worst, angle, vertex, 0.0
+    _, cos_a, sin_a = _line_spread(x[far_a], y[far_a])
+    _, cos_b, sin_b = _line_spread(x[far_b], y[far_b])
+    return worst, angle, vertex, math.acos(min(abs(cos_a * cos_b + sin_a * sin_b), 1.0))
 
 
 def corner_score(best_single: float, arms: tuple[float, float]) -> float:
