@@ -31,6 +31,7 @@ __all__ = [
     "is_json_number",
     "is_whole",
     "refuse_complex",
+    "shown_apart",
 ]
 
 
@@ -76,6 +77,23 @@ def check_positive(name: str, value: Any, *, allow_zero: bool = False) -> float:
     return number
 
 
+def shown_apart(value: float, *bounds: float, digits: int = 3) -> str:
+    """`value` to `digits` significant digits, or as many more as tell it from `bounds`.
+
+    An error that says a value lies beyond a bound must not show it as the bound.
+
+    Examples
+    --------
+    >>> shown_apart(1.0001, 1.0), shown_apart(1.5, 1.0)
+    ('1.0001', '1.5')
+    """
+    for shown in range(digits, 18):
+        text = f"{value:.{shown}g}"
+        if all(float(text) != float(bound) for bound in bounds if bound != value):
+            return text
+    return repr(float(value))
+
+
 def check_range(
     name: str,
     value: Any,
@@ -92,7 +110,8 @@ def check_range(
     if not (above and below):
         left = "[" if low_inclusive else "("
         right = "]" if high_inclusive else ")"
-        raise ValueError(f"`{name}` must lie in {left}{low:g}, {high:g}{right}, got {number:g}")
+        shown = shown_apart(number, low, high, digits=6)  # (as `g` shows it)
+        raise ValueError(f"`{name}` must lie in {left}{low:g}, {high:g}{right}, got {shown}")
     return number
 
 
@@ -143,7 +162,7 @@ def as_finite_array(name: str, value: Any, *, ndim: int | None = None) -> np.nda
     except (TypeError, ValueError) as error:
         if "inhomogeneous" in str(error):  # NumPy's word for lists of unequal lengths
             raise ValueError(
-                f"`{name}` must be a regular array: its rows differ in length, got "
+                f"`{name}` must be a regular array: its nested lists differ in length, got "
                 f"{_short(value)}"
             ) from None
         raise TypeError(f"`{name}` must be numeric, got {_short(value)}") from None

@@ -931,6 +931,11 @@ def test_bad_options():
     # beyond single precision: NumPy's overflow warnings, and a result
     with pytest.raises(ValueError, match=r"`noise` must lie in \(0, 1e\+15\], got 1e\+40"):
         extract(image, 1e-3, noise=1e40)
+    # a value just beyond a limit is shown with the digits that tell it from the limit
+    with pytest.raises(ValueError, match=r"got 1.0000001e\+15$"):
+        extract(image, 1e-3, noise=1.0000001e15)
+    with pytest.raises(ValueError, match=r"within \+-1 m, got 1.0001$"):
+        extract(image, 1e-3, depth=np.full((8, 8), 1.0001))
 
 
 def test_defects_narrower_than_the_cover_blur_are_removed():

@@ -98,10 +98,19 @@ def test_bad_pose(value, match):
 def test_a_pose_holding_booleans_is_refused(value):
     with pytest.raises(TypeError, match="`pose` must be numeric, got a boolean in it"):
         as_pose(value)
+    with pytest.raises(TypeError, match="`pose` must be numeric, got a boolean in it"):
+        as_pose(np.array(value, dtype=object))
+
+
+def test_make_pose_refuses_booleans():
+    with pytest.raises(TypeError, match="`translation` must be numeric, got a boolean"):
+        make_pose(None, [True, 0.0, 0.0])  # True: a metre
+    with pytest.raises(TypeError, match="`rotation` must be numeric, got a boolean"):
+        make_pose(np.eye(3, dtype=bool))
 
 
 def test_a_ragged_pose_is_named_so():
-    with pytest.raises(ValueError, match="`pose` must be a regular array: its rows differ"):
+    with pytest.raises(ValueError, match="`pose` must be a regular array: its nested lists"):
         as_pose([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 1]])
 
 

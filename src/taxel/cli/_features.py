@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from taxel._validation import shown_apart
 from taxel.cli._arguments import positive, positive_in, preset
 from taxel.cli._files import reading, writing
 from taxel.cli._pose_file import POSE_FORMATS, load_pose
@@ -40,9 +41,9 @@ def _check_magnitude(where: str, values: np.ndarray, advice: str) -> None:
     largest = max(abs(float(values.min())), abs(float(values.max())))
     if largest > _LARGEST_VALUE:
         # as few digits as tell the value from the limit (1.0000001e15 is no "1e+15")
-        digits = next(n for n in range(3, 18) if float(f"{largest:.{n}g}") > _LARGEST_VALUE)
         raise ValueError(
-            f"{where}: values up to {largest:.{digits}g}, beyond the {_LARGEST_VALUE:.0e} "
+            f"{where}: values up to {shown_apart(largest, _LARGEST_VALUE)}, beyond the "
+            f"{_LARGEST_VALUE:.0e} "
             f"the features handle (they compute in single precision){advice}"
         )
 

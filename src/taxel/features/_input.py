@@ -8,6 +8,8 @@ from typing import Any
 import cv2
 import numpy as np
 
+from taxel._validation import shown_apart
+
 __all__ = ["LARGEST_VALUE", "as_image", "check_size"]
 
 # The features compute in float32 (which ends at 3.4e38): values up to 1e15 keep their
@@ -60,5 +62,5 @@ def check_size(array: np.ndarray, name: str) -> None:
             raise ValueError(f"`{name}` must be finite everywhere, got {bad} NaN or inf value(s)")
         raise ValueError(
             f"`{name}` values must lie within +-{LARGEST_VALUE:.0e} (the features compute in "
-            f"float32), got a value of magnitude {float(largest):.3g}"
+            f"float32), got a value of magnitude {shown_apart(float(largest), LARGEST_VALUE)}"
         )

@@ -9,7 +9,7 @@ from typing import Any, Unpack
 import cv2
 import numpy as np
 
-from taxel._validation import as_finite_array
+from taxel._validation import as_finite_array, shown_apart
 from taxel.features._image import Preparation, Prepared, prepare
 from taxel.features._record import record
 from taxel.features._window import contact_area, contact_hull, contact_window
@@ -166,6 +166,6 @@ def checked_depth(depth: Any, shape: tuple[int, ...]) -> np.ndarray | None:
     if deepest > _DEEPEST:
         raise ValueError(
             f"`depth` is an indentation in metres and must lie within +-{_DEEPEST:g} m, "
-            f"got {deepest:.3g}"
+            f"got {shown_apart(deepest, _DEEPEST)}"
         )
     return array

@@ -70,8 +70,7 @@ def as_pose(value: Any, *, name: str = "pose") -> np.ndarray:
     ...
     ValueError: `pose` must have last row [0, 0, 0, 1], got [0.0, 0.0, 0.0, 2.0]
     """
-    if _holds_bool(value):  # (a mask is an array of booleans; no pose holds one)
-        raise TypeError(f"`{name}` must be numeric, got a boolean in it")
+    _refuse_bool(name, value)  # (a mask is an array of booleans; no pose holds one)
     pose = as_finite_array(name, value, ndim=2)
     if pose.shape != (4, 4):
         raise ValueError(f"`{name}` must have shape (4, 4), got {pose.shape}")
@@ -89,10 +88,19 @@ def as_pose(value: Any, *, name: str = "pose") -> np.ndarray:
 
 
 def _holds_bool(value: Any) -> bool:
-    """Whether `value` is an array of booleans, or a list or tuple with one at any depth."""
+    """Whether `value` holds a boolean: is one, or an array or list that holds one."""
     if isinstance(value, list | tuple):
         return any(map(_holds_bool, value))
-    return isinstance(value, bool | np.bool_) or getattr(value, "dtype", None) == np.bool_
+    dtype = getattr(value, "dtype", None)
+    if dtype == np.object_:
+        return any(map(_holds_bool, np.asarray(value).ravel().tolist()))
+    return isinstance(value, bool | np.bool_) or dtype == np.bool_
+
+
+def _refuse_bool(name: str, value: Any) -> None:
+    """Raise TypeError naming `name` when `value` holds a boolean (see `_holds_bool`)."""
+    if _holds_bool(value):
+        raise TypeError(f"`{name}` must be numeric, got a boolean in it")
 
 
 def _is_rotation(value: Any) -> bool:
@@ -136,10 +144,12 @@ def make_pose(rotation: Any = None, translation: Any = (0.0, 0.0, 0.0)) -> np.nd
                 raise ValueError("`rotation` must be a single rotation, got a stack")
             pose[:3, :3] = rotation.as_matrix()
         else:
+            _refuse_bool("rotation", rotation)
             block = as_finite_array("rotation", rotation, ndim=2)
             if block.shape != (3, 3):
                 raise ValueError(f"`rotation` must have shape (3, 3), got {block.shape}")
             pose[:3, :3] = block
+    _refuse_bool("translation", translation)  # (True would read as a metre)
     offset = as_finite_array("translation", translation, ndim=1)
     if offset.shape != (3,):
         raise ValueError(f"`translation` must have shape (3,), got {offset.shape}")
