@@ -43,8 +43,8 @@ def _check_magnitude(where: str, values: np.ndarray, advice: str) -> None:
         # as few digits as tell the value from the limit (1.0000001e15 is no "1e+15")
         raise ValueError(
             f"{where}: values up to {shown_apart(largest, _LARGEST_VALUE)}, beyond the "
-            f"{_LARGEST_VALUE:.0e} "
-            f"the features handle (they compute in single precision){advice}"
+            f"{_LARGEST_VALUE:.0e} the features handle (they compute in single precision)"
+            f"{advice}"
         )
 
 
@@ -413,8 +413,8 @@ def register(commands: Any) -> None:
         "such as an FTIR sensor's glass scratches and hot pixels, before finding the contact. "
         "By default they are removed from a raw frame of a sensor whose cover is 3 or more "
         "taxels deep (--sensor vhdta128 or photoelastic64) and kept otherwise: never removed "
-        "from a --calibrated "
-        "image, whose calibration has removed the sensor's fixed defects, and which as a "
+        "from a --calibrated image, whose calibration has removed the sensor's fixed defects, "
+        "and which as a "
         "pressure map from `taxel reconstruct` can be as sparse as the load, nor when a "
         "--reference is subtracted",
     )

@@ -234,12 +234,12 @@ def _arms_between(
         return worst, angle, vertex, math.nan
     # the lines through the far halves of the arms (away from the vertex), and the angle
     # between them (undirected: 0 to 90 degrees)
-    far_a = first & (t[0] > 0.5)
-    far_b = other & (t[1] > 0.5)
-    if np.count_nonzero(far_a) < 3 or np.count_nonzero(far_b) < 3:
+    outer_a = first & (t[0] > 0.5)
+    outer_b = other & (t[1] > 0.5)
+    if np.count_nonzero(outer_a) < 3 or np.count_nonzero(outer_b) < 3:
         return worst, angle, vertex, 0.0
-    _, cos_a, sin_a = _line_spread(x[far_a], y[far_a])
-    _, cos_b, sin_b = _line_spread(x[far_b], y[far_b])
+    _, cos_a, sin_a = _line_spread(x[outer_a], y[outer_a])
+    _, cos_b, sin_b = _line_spread(x[outer_b], y[outer_b])
     return worst, angle, vertex, math.acos(min(abs(cos_a * cos_b + sin_a * sin_b), 1.0))
 
 
